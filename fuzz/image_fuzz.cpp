@@ -1,0 +1,24 @@
+// Fuzzes image decoding from memory, every input as a PNG (stb_image) and as
+// a PFM. Any exception other than vkray::Error is a bug; a decoded image's
+// size must match its pixel array.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "image/image_io.h"
+#include "scene/error.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string bytes(reinterpret_cast<const char*>(data), size);
+    for (const char* path : {"fuzz.png", "fuzz.pfm"}) {
+        try {
+            const vkray::Image image = vkray::decodeImage(bytes, path);
+            if (image.width <= 0 || image.height <= 0 ||
+                image.pixels.size() != std::size_t(image.width) * std::size_t(image.height) *
+                                           std::size_t(image.channels))
+                __builtin_trap();
+        } catch (const vkray::Error&) {
+        }
+    }
+    return 0;
+}

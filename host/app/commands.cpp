@@ -1,0 +1,372 @@
+#include "app/commands.h"
+
+#include "app/pixel_report.h"
+#include "app/watch.h"
+#include "gpu/context.h"
+#include "gpu/gpu_tracer.h"
+#include "gpu/shader_variant.h"
+#include "image/image_io.h"
+#include "image/metrics.h"
+#include "reference/reference_tracer.h"
+#include "scene/camera.h"
+#include "scene/error.h"
+#include "scene/scene_geometry.h"
+#include "scene/sdl_reader.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <thread>
+#include <unistd.h>
+
+namespace vkray {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Located errors read "file:line:col: error: ..." already; others get a prefix.
+void printError(const Error& e, std::ostream& err) {
+    const std::string message = e.what();
+    err << (message.find(": error: ") != std::string::npos ? "" : "vkray: error: ") << message
+        << "\n";
+}
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string fixed(double value, int digits) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", digits, value);
+    return text;
+}
+
+// shaders/ next to the binary (where the build copies them), unless given.
+std::string shaderDirectory(const Options& o) {
+    if (!o.shaderDirectory.empty()) {
+        if (!fs::exists(fs::path(o.shaderDirectory) / "trace.comp"))
+            throw Error("--shader-dir " + o.shaderDirectory + ": no trace.comp there");
+        return o.shaderDirectory;
+    }
+    std::error_code ec;
+    fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    fs::path dir = exe.parent_path() / "shaders";
+    if (ec || !fs::exists(dir / "trace.comp"))
+        throw Error("cannot find the shaders next to the binary (" + dir.string() +
+                    "); pass --shader-dir DIR (the project's shaders/ folder)");
+    return dir.string();
+}
+
+// Fails before rendering when an output could never be written.
+void requireWritableFolder(const std::string& path, const char* what) {
+    fs::path folder = fs::path(path).parent_path();
+    if (folder.empty()) folder = ".";
+    if (!fs::is_directory(folder) || ::access(folder.c_str(), W_OK) != 0)
+        throw Error(std::string(what) + " '" + path + "': the folder '" + folder.string() +
+                    "' does not exist or is not writable");
+}
+
+Camera chooseCamera(const Scene& scene, const Options& o) {
+    Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
+    if (o.eye) camera.eye = *o.eye;
+    if (o.look) camera.look = *o.look;
+    if (o.up) camera.up = *o.up;
+    if (o.fov) camera.fovDegrees = *o.fov;
+    return camera;
+}
+
+double mrays(std::size_t rays, double seconds) {
+    return seconds > 0 ? double(rays) / seconds / 1e6 : 0;
+}
+
+std::size_t primaryRays(const RenderSettings& s) {
+    return std::size_t((s.width + s.block - 1) / s.block) * std::size_t((s.height + s.block - 1) / s.block);
+}
+
+// The GPU side of a render session: one Vulkan context and tracer, kept
+// across the re-renders of --watch.
+struct GpuSession {
+    std::unique_ptr<gpu::Context> context;
+    std::unique_ptr<gpu::GpuTracer> tracer;
+
+    gpu::GpuTracer& tracerFor(const Options& o, std::ostream& out) {
+        if (!tracer) {
+            context = std::make_unique<gpu::Context>(gpu::ContextOptions{o.device, o.validation});
+            const gpu::DeviceInfo& device = context->device();
+            out << "device: " << device.name << " (" << device.type << ", " << device.driverName
+                << " " << device.driverInfo << ")\n";
+            tracer = std::make_unique<gpu::GpuTracer>(
+                *context, gpu::GpuRenderOptions{.shaderDirectory = shaderDirectory(o), .allFeatures = o.allFeatures, .userDefines = o.defines});
+        }
+        return *tracer;
+    }
+    void requireNoValidationMessages(const Options& o) const {
+        if (o.validation && context && context->validationMessages() > 0)
+            throw Error("--validation: " + std::to_string(context->validationMessages()) +
+                        " validation message(s), printed above");
+    }
+};
+
+void reportShader(const gpu::GpuRenderStats& stats, const Options& o, std::ostream& out) {
+    out << "shader: " << stats.variant << " variant " << stats.shader.key
+        << (stats.shader.cacheHit ? " (cached, " : " (compiled, ") << fixed(stats.shader.seconds, 3)
+        << " s)\n";
+    if (o.dumpSpirvDirectory.empty()) return;
+    const std::string path =
+        (fs::path(o.dumpSpirvDirectory) / ("trace-" + stats.shader.key + ".spv")).string();
+    writeFileAtomically(path, std::string(reinterpret_cast<const char*>(stats.shader.spirv.data()),
+                                          stats.shader.spirv.size() * sizeof(std::uint32_t)));
+    out << "wrote " << path << " (spirv-dis " << path << " disassembles it)\n";
+}
+
+Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
+                const Options& o, GpuSession& session, std::ostream& out) {
+    gpu::GpuTracer& tracer = session.tracerFor(o, out);
+    gpu::GpuRenderStats stats;
+    Frame frame = tracer.render(scene, camera, settings, &stats);
+    reportShader(stats, o, out);
+    out << "gpu render: " << fixed(stats.renderSeconds, 3) << " s, " << stats.tiles << " tiles, "
+        << fixed(mrays(stats.rays, stats.renderSeconds), 2) << " Mrays/s\n";
+    session.requireNoValidationMessages(o);
+    return frame;
+}
+
+Frame renderCpu(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
+                const Options& o, std::ostream& out) {
+    const auto start = Clock::now();
+    const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    Frame frame = reference::render(scene, camera, settings, {threads});
+    const double seconds = secondsSince(start);
+    out << "cpu reference render: " << fixed(seconds, 3) << " s, " << threads << " threads, "
+        << fixed(mrays(primaryRays(settings), seconds), 2) << " Mrays/s\n";
+    return frame;
+}
+
+// Compares colour (and ids) of two frames or files; prints the report.
+bool compareAndReport(const Image& a, const Image& b, const Image* idsA, const Image* idsB,
+                      const CompareOptions& options, const std::string& diffPath,
+                      std::ostream& out) {
+    CompareResult result = compareImages(a, b, options);
+    if (idsA && idsB) {
+        compareIds(*idsA, *idsB, result);
+        result.passed = result.passed && result.idMismatchPercent <= options.failPercent;
+    }
+    if (!diffPath.empty()) writeImage(diffPath, diffImage(a, b));
+    out << formatCompareReport(result, options);
+    return result.passed;
+}
+
+// Loads the scene as the options say; warnings go to err.
+Scene loadSceneFor(const Options& o, std::ostream& err) {
+    std::vector<std::string> warnings;
+    Scene scene = loadScene(o.scenePath, {o.lenient}, &warnings);
+    for (const std::string& w : warnings) err << w << "\n";
+    return scene;
+}
+
+int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::ostream& err) {
+    const Scene scene = loadSceneFor(o, err);
+    const std::string output =
+        o.outputPath.empty() ? fs::path(o.scenePath).stem().string() + ".png" : o.outputPath;
+    requireWritableFolder(output, "output");
+    if (!o.aovPrefix.empty()) requireWritableFolder(o.aovPrefix, "--aov");
+    if (!o.diffPath.empty()) requireWritableFolder(o.diffPath, "--diff");
+    if (!o.dumpSpirvDirectory.empty())
+        requireWritableFolder((fs::path(o.dumpSpirvDirectory) / "x").string(), "--dump-spirv");
+
+    const RenderSettings settings{o.width, o.height, o.block};
+    const CameraBasis camera = makeCameraBasis(chooseCamera(scene, o), o.width, o.height);
+    out << "scene: " << o.scenePath << " (" << scene.objects.size() << " objects, "
+        << scene.lights.size() << " lights), " << o.width << "x" << o.height
+        << (o.block > 1 ? ", block " + std::to_string(o.block) : std::string()) << "\n";
+
+    Frame frame = o.cpu ? renderCpu(scene, camera, settings, o, out)
+                        : renderGpu(scene, camera, settings, o, session, out);
+    bool passed = true;
+    if (o.check) {
+        Frame reference = renderCpu(scene, camera, settings, o, out);
+        const CompareOptions tolerance{o.failThreshold.value_or(kCheckFailThreshold),
+                                       o.failPercent.value_or(kCheckFailPercent)};
+        const Image idsGpu = idImage(frame), idsCpu = idImage(reference);
+        out << "gpu vs cpu reference:\n";
+        passed = compareAndReport(colorImage(frame), colorImage(reference), &idsGpu, &idsCpu,
+                                  tolerance, o.diffPath, out);
+    }
+
+    writeImage(output, colorImage(frame));
+    out << "wrote " << output << "\n";
+    if (!o.aovPrefix.empty()) {
+        writeAovs(o.aovPrefix, frame);
+        out << "wrote " << o.aovPrefix << ".depth.pfm, .normal.pfm, .id.pfm\n";
+    }
+    return passed ? 0 : 2;
+}
+
+// The files a render reads besides the shaders: the scene and what it names.
+std::vector<std::string> sceneInputs(const Options& o) {
+    std::vector<std::string> files{o.scenePath};
+    try {
+        const Scene scene = loadSdlFile(o.scenePath, {true}, nullptr);
+        for (const SceneObject& object : scene.objects)
+            if (!object.file.empty()) files.push_back(object.file);
+        for (const Pixmap& pixmap : scene.pixmaps) files.push_back(pixmap.file);
+    } catch (const Error&) {
+        // The render has reported the error; the scene file alone is watched.
+    }
+    return files;
+}
+
+// --watch: render, then re-render whenever an input or a shader changes, until
+// Ctrl-C. A failed render prints its error and keeps the last good image.
+int runWatch(const Options& o, std::ostream& out, std::ostream& err) {
+    GpuSession session;
+    const std::string shaders = o.cpu ? std::string() : shaderDirectory(o);
+    const StopOnSignal stopOnSignal;
+    for (bool first = true; !stopRequested(); first = false) {
+        const auto start = Clock::now();
+        try {
+            renderOnce(o, session, out, err);
+            out << (first ? "rendered" : "reloaded") << " in " << fixed(secondsSince(start), 3)
+                << " s\n";
+        } catch (const Error& e) {
+            printError(e, err);
+            err << "vkray: kept the last good image; fix the error and save to retry\n";
+        }
+        FileWatcher watcher;
+        for (const std::string& file : sceneInputs(o)) watcher.watchFile(file);
+        if (!shaders.empty()) watcher.watchFolder(shaders);
+        out << "watching " << o.scenePath << (shaders.empty() ? "" : " and " + shaders)
+            << " (Ctrl-C stops)" << std::endl;
+        err.flush();
+        if (!watcher.waitForChange()) break;
+    }
+    out << "stopped\n";
+    return 0;
+}
+
+int runRender(const Options& o, std::ostream& out, std::ostream& err) {
+    if (o.watch) return runWatch(o, out, err);
+    GpuSession session;
+    return renderOnce(o, session, out, err);
+}
+
+// `vkray pixel`: the same pixel on the GPU (debug-pixel variant) and the CPU.
+int runPixel(const Options& o, std::ostream& out, std::ostream& err) {
+    const Scene scene = loadSceneFor(o, err);
+    const RenderSettings settings{o.width, o.height, o.block};
+    const CameraBasis camera = makeCameraBasis(chooseCamera(scene, o), o.width, o.height);
+    GpuSession session;
+    gpu::GpuRenderStats stats;
+    const PixelTrace gpu =
+        session.tracerFor(o, out).tracePixel(scene, camera, settings, o.pixelX, o.pixelY, &stats);
+    reportShader(stats, o, out);
+    session.requireNoValidationMessages(o);
+    const PixelTrace cpu = reference::tracePixel(scene, camera, settings, o.pixelX, o.pixelY);
+    out << formatPixelReport(scene, settings, gpu, cpu);
+    return 0;
+}
+
+// `vkray shaders check`: every variant compiles; each failure with file:line.
+int runShadersCheck(const Options& o, std::ostream& out, std::ostream& err) {
+    const std::string directory = shaderDirectory(o);
+    int failures = 0;
+    const std::vector<gpu::ShaderFeatures> variants = gpu::allVariants(o.everyVariant);
+    for (const gpu::ShaderFeatures& features : variants) {
+        const auto start = Clock::now();
+        try {
+            gpu::compileComputeShader({directory, "trace.comp", gpu::definesFor(features)});
+            out << "ok    " << gpu::describe(features) << " (" << fixed(secondsSince(start), 2)
+                << " s)\n";
+        } catch (const Error& e) {
+            ++failures;
+            out << "FAIL  " << gpu::describe(features) << "\n";
+            err << e.what() << "\n";
+        }
+    }
+    out << variants.size() - failures << " of " << variants.size() << " variants compiled"
+        << (failures ? ", " + std::to_string(failures) + " failed" : std::string()) << "\n";
+    return failures ? 1 : 0;
+}
+
+int runCompare(const Options& o, std::ostream& out) {
+    const Image a = readImage(o.imageA), b = readImage(o.imageB);
+    if (!o.diffPath.empty()) requireWritableFolder(o.diffPath, "--diff");
+    const CompareOptions tolerance{o.failThreshold.value_or(CompareOptions{}.failThreshold),
+                                   o.failPercent.value_or(CompareOptions{}.failPercent)};
+    // Ids: given with --ids, or found beside the images as written by
+    // `render -o X.png --aov X` (X.id.pfm).
+    std::string idsPathA = o.idsA, idsPathB = o.idsB;
+    if (idsPathA.empty()) {
+        const auto beside = [](const std::string& image) {
+            return fs::path(image).replace_extension().string() + ".id.pfm";
+        };
+        if (fs::exists(beside(o.imageA)) && fs::exists(beside(o.imageB))) {
+            idsPathA = beside(o.imageA);
+            idsPathB = beside(o.imageB);
+            out << "object ids from " << idsPathA << " and " << idsPathB << "\n";
+        }
+    }
+    if (idsPathA.empty())
+        return compareAndReport(a, b, nullptr, nullptr, tolerance, o.diffPath, out) ? 0 : 2;
+    const Image idsA = readImage(idsPathA), idsB = readImage(idsPathB);
+    return compareAndReport(a, b, &idsA, &idsB, tolerance, o.diffPath, out) ? 0 : 2;
+}
+
+int runDevices(std::ostream& out) {
+    int preferred = -1;
+    const auto devices = gpu::Context::listDevices(&preferred);
+    if (devices.empty())
+        throw Error("no Vulkan device found; install mesa-vulkan-drivers (lavapipe) or a GPU "
+                    "driver, or check VK_ICD_FILENAMES");
+    for (const gpu::DeviceInfo& d : devices) {
+        out << d.index << ": " << d.name << (d.index == preferred ? "  [render picks this]" : "")
+            << "\n   type " << d.type << ", driver " << d.driverName << " " << d.driverInfo
+            << " (version " << d.driverVersion << "), Vulkan " << d.apiVersionString()
+            << "\n   compute " << (d.hasCompute ? "yes" : "no") << ", shaderFloat64 "
+            << (d.shaderFloat64 ? "yes" : "no") << ", subgroup size " << d.subgroupSize
+            << ", max storage buffer " << d.maxStorageBufferRange << " bytes"
+            << ", max workgroup size " << d.maxWorkgroupSize[0] << "x" << d.maxWorkgroupSize[1]
+            << "x" << d.maxWorkgroupSize[2] << ", max workgroup count " << d.maxWorkgroupCount[0]
+            << "x" << d.maxWorkgroupCount[1] << "x" << d.maxWorkgroupCount[2] << "\n";
+    }
+    return 0;
+}
+
+}  // namespace
+
+int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
+    switch (o.command) {
+    case Command::Help: out << usageText(); return 0;
+    case Command::Version: out << "vkray 0.1.0\n"; return 0;
+    case Command::Render: return runRender(o, out, err);
+    case Command::Pixel: return runPixel(o, out, err);
+    case Command::ShadersCheck: return runShadersCheck(o, out, err);
+    case Command::Compare: return runCompare(o, out);
+    case Command::Devices: return runDevices(out);
+    }
+    return 1;
+}
+
+int vkrayMain(int argc, char** argv) {
+    try {
+        const Options options = parseOptions(std::vector<std::string>(argv + 1, argv + argc));
+        return runCommand(options, std::cout, std::cerr);
+    } catch (const Error& e) {
+        printError(e, std::cerr);
+    } catch (const std::bad_alloc&) {
+        std::cerr << "vkray: error: out of memory; render a smaller image or scene\n";
+    } catch (const std::exception& e) {
+        // Vulkan errors (device lost, out of device memory) arrive here.
+        std::cerr << "vkray: error: " << e.what()
+                  << "\n  (a Vulkan or system failure; `vkray devices` shows the devices, "
+                     "--cpu renders without Vulkan)\n";
+    }
+    return 1;
+}
+
+}  // namespace vkray

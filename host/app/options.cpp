@@ -1,0 +1,260 @@
+#include "app/options.h"
+
+#include "scene/error.h"
+
+#include <charconv>
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <functional>
+#include <map>
+
+namespace vkray {
+
+namespace {
+
+double parseNumber(const std::string& flag, const std::string& text) {
+    double value = 0;
+    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+        throw Error(flag + ": '" + text + "' is not a number");
+    return value;
+}
+
+int parseInt(const std::string& flag, const std::string& text, int lo, int hi) {
+    long long value = 0;
+    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec != std::errc() || end != text.data() + text.size())
+        throw Error(flag + ": '" + text + "' is not a whole number");
+    if (value < lo || value > hi)
+        throw Error(flag + ": " + text + " is out of range (" + std::to_string(lo) + " .. " +
+                    std::to_string(hi) + ")");
+    return int(value);
+}
+
+glm::dvec3 parseVector(const std::string& flag, const std::string& text) {
+    glm::dvec3 v;
+    size_t start = 0;
+    for (int i = 0; i < 3; ++i) {
+        size_t comma = text.find(',', start);
+        if ((i < 2) != (comma != std::string::npos))
+            throw Error(flag + ": expected three numbers x,y,z, found '" + text + "'");
+        v[i] = parseNumber(flag, text.substr(start, comma - start));
+        start = comma + 1;
+    }
+    return v;
+}
+
+// --size WxH
+void parseSize(const std::string& text, Options& o) {
+    size_t x = text.find('x');
+    if (x == std::string::npos) throw Error("--size: expected WIDTHxHEIGHT, e.g. 640x480, found '" + text + "'");
+    o.width = parseInt("--size", text.substr(0, x), 1, kMaxRenderSide);
+    o.height = parseInt("--size", text.substr(x + 1), 1, kMaxRenderSide);
+    if ((long long)o.width * o.height > kMaxRenderPixels)
+        throw Error("--size: " + text + " is " + std::to_string((long long)o.width * o.height) +
+                    " pixels, more than the limit of " + std::to_string(kMaxRenderPixels) +
+                    "; render a smaller image");
+}
+
+struct Flag {
+    bool takesValue;
+    std::function<void(Options&, const std::string&)> apply;
+};
+
+const std::map<std::string, Flag>& renderFlags() {
+    static const std::map<std::string, Flag> flags = {
+        {"-o", {true, [](Options& o, const std::string& v) { o.outputPath = v; }}},
+        {"--output", {true, [](Options& o, const std::string& v) { o.outputPath = v; }}},
+        {"--size", {true, [](Options& o, const std::string& v) { parseSize(v, o); }}},
+        {"--device", {true, [](Options& o, const std::string& v) { o.device = parseInt("--device", v, 0, 1023); }}},
+        {"--block", {true, [](Options& o, const std::string& v) { o.block = parseInt("--block", v, 1, 1024); }}},
+        {"--aov", {true, [](Options& o, const std::string& v) { o.aovPrefix = v; }}},
+        {"--cpu", {false, [](Options& o, const std::string&) { o.cpu = true; }}},
+        {"--check", {false, [](Options& o, const std::string&) { o.check = true; }}},
+        {"--lenient", {false, [](Options& o, const std::string&) { o.lenient = true; }}},
+        {"--validation", {false, [](Options& o, const std::string&) { o.validation = true; }}},
+        {"--variant", {true, [](Options& o, const std::string& v) {
+             if (v != "all" && v != "scene")
+                 throw Error("--variant: expected 'all' or 'scene', found '" + v + "'");
+             o.allFeatures = v == "all";
+         }}},
+        {"--threads", {true, [](Options& o, const std::string& v) { o.threads = parseInt("--threads", v, 1, 1024); }}},
+        {"--shader-dir", {true, [](Options& o, const std::string& v) { o.shaderDirectory = v; }}},
+        {"--eye", {true, [](Options& o, const std::string& v) { o.eye = parseVector("--eye", v); }}},
+        {"--look", {true, [](Options& o, const std::string& v) { o.look = parseVector("--look", v); }}},
+        {"--up", {true, [](Options& o, const std::string& v) { o.up = parseVector("--up", v); }}},
+        {"--fov", {true, [](Options& o, const std::string& v) {
+             o.fov = parseNumber("--fov", v);
+             if (!(*o.fov > 0 && *o.fov < 180)) throw Error("--fov: must be between 0 and 180 degrees");
+         }}},
+        {"--dump-spirv", {true, [](Options& o, const std::string& v) { o.dumpSpirvDirectory = v; }}},
+        {"--watch", {false, [](Options& o, const std::string&) { o.watch = true; }}},
+        {"--all", {false, [](Options& o, const std::string&) { o.everyVariant = true; }}},
+        {"--diff", {true, [](Options& o, const std::string& v) { o.diffPath = v; }}},
+        {"--fail", {true, [](Options& o, const std::string& v) {
+             o.failThreshold = parseNumber("--fail", v);
+             if (*o.failThreshold < 0) throw Error("--fail: must not be negative");
+         }}},
+        {"--failpercent", {true, [](Options& o, const std::string& v) {
+             o.failPercent = parseNumber("--failpercent", v);
+             if (*o.failPercent < 0 || *o.failPercent > 100) throw Error("--failpercent: must be between 0 and 100");
+         }}},
+    };
+    return flags;
+}
+
+// -D NAME=VALUE (or -DNAME=VALUE; VALUE defaults to 1), as a C compiler takes it.
+void parseDefine(const std::string& text, Options& o) {
+    const size_t eq = text.find('=');
+    const std::string name = text.substr(0, eq);
+    const std::string value = eq == std::string::npos ? "1" : text.substr(eq + 1);
+    const bool identifier =
+        !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
+        std::all_of(name.begin(), name.end(),
+                    [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+    if (!identifier)
+        throw Error("-D: '" + text + "' is not NAME=VALUE with NAME a C identifier");
+    if (value.find_first_of("\n\r") != std::string::npos)
+        throw Error("-D " + name + ": the value must be one line");
+    o.defines.emplace_back(name, value);
+}
+
+// Which flags each command takes, besides render's full set.
+bool accepts(Command command, const std::string& flag) {
+    switch (command) {
+    case Command::Render: return flag != "--all";
+    case Command::Pixel:
+        return flag != "-o" && flag != "--output" && flag != "--aov" && flag != "--cpu" &&
+               flag != "--check" && flag != "--diff" && flag != "--fail" &&
+               flag != "--failpercent" && flag != "--watch" && flag != "--threads" &&
+               flag != "--all";
+    case Command::Compare: return flag == "--diff" || flag == "--fail" || flag == "--failpercent";
+    case Command::ShadersCheck: return flag == "--shader-dir" || flag == "--all";
+    default: return false;
+    }
+}
+
+int parsePixelCoordinate(const char* what, const std::string& text) {
+    return parseInt(std::string("pixel ") + what, text, 0, kMaxRenderSide - 1);
+}
+
+}  // namespace
+
+std::string usageText() {
+    return R"(usage:
+  vkray render SCENE.sdl [-o out.png] [options]   render on the GPU (or --cpu)
+  vkray pixel SCENE.sdl X Y [options]             trace one pixel on GPU and CPU, side by side
+  vkray compare A B [--ids A.id.pfm B.id.pfm] [--diff FILE] [--fail T] [--failpercent P]
+  vkray devices                                   list Vulkan devices
+  vkray shaders check [--all] [--shader-dir DIR]  compile the shader variants
+  vkray --version | --help
+
+render options:
+  -o, --output FILE     PNG to write (default: SCENE's name with .png)
+  --size WxH            image size (default 640x480; each side <= 16384)
+  --device N            Vulkan device index (see `vkray devices`)
+  --block N             one ray per NxN block, the block filled with its colour
+  --aov PREFIX          also write PREFIX.depth.pfm, PREFIX.normal.pfm, PREFIX.id.pfm
+  --cpu                 render with the CPU reference instead of the GPU
+  --check               render with both and compare (exit 2 beyond tolerance)
+  --diff FILE           with --check: write a diff image
+  --fail T              per-pixel error threshold (idiff --fail)
+  --failpercent P       percent of pixels allowed over T (idiff --failpercent)
+  --lenient             skip unknown words and unsupported shapes, with warnings
+  --eye X,Y,Z --look X,Y,Z --up X,Y,Z --fov DEG   override the scene's camera
+  --threads N           CPU reference threads (default: all cores)
+  --shader-dir DIR      GLSL folder (default: shaders/ next to the binary)
+  --variant all|scene   compile every shape in, or only the scene's (default)
+  --validation          enable the Khronos validation layer; any message fails
+  --watch               re-render when the scene, a file it reads or a shader changes
+  -D NAME=VALUE         define for the shader compile (repeatable)
+  --dump-spirv DIR      write the SPIR-V of the variant used to DIR
+
+exit status: 0 success, 1 error, 2 images differ beyond tolerance
+)";
+}
+
+Options parseOptions(const std::vector<std::string>& args) {
+    Options o;
+    if (args.empty()) return o;
+    const std::string& verb = args[0];
+    if (verb == "--help" || verb == "-h" || verb == "help") return o;
+    if (verb == "--version") {
+        o.command = Command::Version;
+        return o;
+    }
+    size_t first = 1;
+    if (verb == "render") o.command = Command::Render;
+    else if (verb == "pixel") o.command = Command::Pixel;
+    else if (verb == "compare") o.command = Command::Compare;
+    else if (verb == "devices") o.command = Command::Devices;
+    else if (verb == "shaders" && args.size() > 1 && args[1] == "check") {
+        o.command = Command::ShadersCheck;
+        first = 2;
+    } else if (verb == "shaders") throw Error("shaders: expected `vkray shaders check`");
+    else throw Error("unknown command '" + verb + "'; try `vkray --help`");
+
+    std::vector<std::string> positional;
+    for (size_t i = first; i < args.size(); ++i) {
+        std::string arg = args[i], value;
+        // A lone '-' or a negative number is a positional argument.
+        if (arg.size() < 2 || arg[0] != '-' || std::isdigit(static_cast<unsigned char>(arg[1]))) {
+            positional.push_back(arg);
+            continue;
+        }
+        if (arg.rfind("-D", 0) == 0 && accepts(o.command, "-D")) {
+            if (arg.size() == 2 && i + 1 >= args.size()) throw Error("-D: expects NAME=VALUE");
+            parseDefine(arg.size() > 2 ? arg.substr(2) : args[++i], o);
+            continue;
+        }
+        if (size_t eq = arg.find('='); eq != std::string::npos && arg.rfind("--", 0) == 0) {
+            value = arg.substr(eq + 1);
+            arg = arg.substr(0, eq);
+        }
+        if (o.command == Command::Compare && arg == "--ids") {
+            if (i + 2 >= args.size()) throw Error("--ids: expected two files, A.id.pfm B.id.pfm");
+            o.idsA = args[++i];
+            o.idsB = args[++i];
+            continue;
+        }
+        auto it = renderFlags().find(arg);
+        if (it == renderFlags().end() || !accepts(o.command, arg))
+            throw Error("unknown option '" + arg + "' for `vkray " + verb + "`; try `vkray --help`");
+        if (it->second.takesValue && value.empty()) {
+            if (i + 1 >= args.size()) throw Error(arg + ": expects a value");
+            value = args[++i];
+        }
+        it->second.apply(o, value);
+    }
+
+    if (o.command == Command::Render) {
+        if (positional.size() != 1)
+            throw Error("render: expected one scene file, e.g. `vkray render scenes/default.sdl -o out.png`");
+        o.scenePath = positional[0];
+        if (o.cpu && o.check) throw Error("--cpu and --check: --check already renders with both");
+        if (!o.diffPath.empty() && !o.check) throw Error("--diff needs --check (or use `vkray compare`)");
+        if (o.cpu && o.validation) throw Error("--validation applies to the GPU; drop --cpu");
+        if (o.cpu && (!o.defines.empty() || !o.dumpSpirvDirectory.empty()))
+            throw Error("-D and --dump-spirv apply to the GPU shader; drop --cpu");
+    } else if (o.command == Command::Pixel) {
+        if (positional.size() != 3)
+            throw Error("pixel: expected a scene file and a pixel, e.g. `vkray pixel scene.sdl 320 240`");
+        o.scenePath = positional[0];
+        o.pixelX = parsePixelCoordinate("X", positional[1]);
+        o.pixelY = parsePixelCoordinate("Y", positional[2]);
+        if (o.pixelX >= o.width || o.pixelY >= o.height)
+            throw Error("pixel: (" + positional[1] + ", " + positional[2] + ") is outside the " +
+                        std::to_string(o.width) + "x" + std::to_string(o.height) +
+                        " image; pass --size or a smaller X Y");
+    } else if (o.command == Command::Compare) {
+        if (positional.size() != 2) throw Error("compare: expected two image files A B");
+        o.imageA = positional[0];
+        o.imageB = positional[1];
+    } else if (!positional.empty()) {
+        throw Error(verb + ": takes no arguments");
+    }
+    return o;
+}
+
+}  // namespace vkray

@@ -1,0 +1,64 @@
+// The command line, parsed into a plain struct (pbrt-v4's Options style):
+// `--x v` and `--x=v` both work, unknown flags and bad values are errors that
+// name the flag, and combinations are checked after parsing.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace vkray {
+
+enum class Command { Help, Version, Render, Pixel, Compare, Devices, ShadersCheck };
+
+// The largest image vkray renders: each side at most kMaxRenderSide and at
+// most kMaxRenderPixels in all (a Frame costs 32 bytes a pixel on the host).
+inline constexpr int kMaxRenderSide = 16384;
+inline constexpr long long kMaxRenderPixels = 64ll * 1024 * 1024;
+
+struct Options {
+    Command command = Command::Help;
+
+    // render
+    std::string scenePath;
+    std::string outputPath;  // -o; default: the scene's name with .png, in the current folder
+    int width = 640;
+    int height = 480;
+    int device = -1;         // --device N; -1 = automatic choice
+    int block = 1;
+    std::string aovPrefix;
+    bool cpu = false;
+    bool check = false;
+    bool lenient = false;
+    bool validation = false;
+    bool allFeatures = false;  // --variant all
+    int threads = 0;           // CPU reference threads; 0 = all cores
+    std::string shaderDirectory;
+    std::optional<glm::dvec3> eye, look, up;
+    std::optional<double> fov;
+    std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE
+    std::string dumpSpirvDirectory;                            // --dump-spirv DIR
+    bool watch = false;                                        // --watch
+
+    bool everyVariant = false;  // shaders check --all
+
+    // pixel SCENE X Y
+    int pixelX = 0, pixelY = 0;
+
+    // compare (and render --check)
+    std::string imageA, imageB;
+    std::string idsA, idsB;  // --ids A B
+    std::string diffPath;
+    std::optional<double> failThreshold;
+    std::optional<double> failPercent;
+};
+
+// Throws Error (message names the flag or value) on bad usage.
+Options parseOptions(const std::vector<std::string>& args);
+
+std::string usageText();
+
+}  // namespace vkray

@@ -1,0 +1,89 @@
+#include "app/watch.h"
+
+#include "scene/error.h"
+
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <poll.h>
+#include <sys/inotify.h>
+#include <unistd.h>
+
+namespace vkray {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+volatile std::sig_atomic_t stopFlag = 0;
+void onStopSignal(int) { stopFlag = 1; }
+
+using SignalHandler = void (*)(int);
+SignalHandler previousInt = SIG_DFL, previousTerm = SIG_DFL;
+
+}  // namespace
+
+StopOnSignal::StopOnSignal() {
+    stopFlag = 0;
+    previousInt = std::signal(SIGINT, onStopSignal);
+    previousTerm = std::signal(SIGTERM, onStopSignal);
+}
+
+StopOnSignal::~StopOnSignal() {
+    std::signal(SIGINT, previousInt);
+    std::signal(SIGTERM, previousTerm);
+}
+
+bool stopRequested() { return stopFlag != 0; }
+
+FileWatcher::FileWatcher() : fd_(::inotify_init1(IN_NONBLOCK | IN_CLOEXEC)) {
+    if (fd_ < 0)
+        throw Error(std::string("--watch: cannot watch files (inotify: ") + std::strerror(errno) +
+                    ")");
+}
+
+FileWatcher::~FileWatcher() { ::close(fd_); }
+
+void FileWatcher::addWatch(const std::string& folder, const std::string& name) {
+    const int wd = ::inotify_add_watch(
+        fd_, folder.c_str(), IN_CLOSE_WRITE | IN_MOVED_TO | IN_CREATE | IN_DELETE | IN_MODIFY);
+    if (wd < 0)
+        throw Error("--watch: cannot watch '" + folder + "': " + std::strerror(errno));
+    names_[wd].insert(name);
+}
+
+void FileWatcher::watchFile(const std::string& path) {
+    const fs::path p(path);
+    const fs::path folder = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+    if (fs::is_directory(folder)) addWatch(folder.string(), p.filename().string());
+}
+
+void FileWatcher::watchFolder(const std::string& folder) {
+    addWatch(folder, "");
+    for (const auto& entry : fs::recursive_directory_iterator(folder))
+        if (entry.is_directory()) addWatch(entry.path().string(), "");
+}
+
+bool FileWatcher::waitForChange() {
+    alignas(inotify_event) char buffer[16 * 1024];
+    bool changed = false;
+    while (!stopRequested()) {
+        pollfd p{fd_, POLLIN, 0};
+        // Once a change is seen, wait out the burst an editor's save makes.
+        const int ready = ::poll(&p, 1, changed ? 100 : 200);
+        if (ready == 0 && changed) return true;
+        if (ready <= 0) continue;  // timeout or EINTR: look at the stop flag again
+        const ssize_t n = ::read(fd_, buffer, sizeof buffer);
+        for (ssize_t at = 0; n > 0 && at < n;) {
+            const auto* event = reinterpret_cast<const inotify_event*>(buffer + at);
+            const auto watched = names_.find(event->wd);
+            if (watched != names_.end() && event->len > 0)
+                changed = changed || watched->second.count("") > 0 ||
+                          watched->second.count(event->name) > 0;
+            at += ssize_t(sizeof(inotify_event) + event->len);
+        }
+    }
+    return false;
+}
+
+}  // namespace vkray

@@ -1,0 +1,245 @@
+#include "gpu/context_impl.h"
+
+#include "scene/error.h"
+
+#include <cstdio>
+#include <cstring>
+
+namespace vkray::gpu {
+
+namespace {
+
+const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+// What to do when no device is usable: the same advice everywhere.
+const char* kDeviceAdvice =
+    "install a Vulkan driver (on Debian: apt-get install mesa-vulkan-drivers for lavapipe, "
+    "the CPU implementation), check VK_ICD_FILENAMES if set, or render with --cpu";
+
+std::string deviceTypeName(vk::PhysicalDeviceType type) {
+    switch (type) {
+    case vk::PhysicalDeviceType::eDiscreteGpu: return "discrete GPU";
+    case vk::PhysicalDeviceType::eIntegratedGpu: return "integrated GPU";
+    case vk::PhysicalDeviceType::eVirtualGpu: return "virtual GPU";
+    case vk::PhysicalDeviceType::eCpu: return "CPU";
+    default: return "other";
+    }
+}
+
+// Lower is better: real GPUs before lavapipe.
+int typeRank(vk::PhysicalDeviceType type) {
+    switch (type) {
+    case vk::PhysicalDeviceType::eDiscreteGpu: return 0;
+    case vk::PhysicalDeviceType::eIntegratedGpu: return 1;
+    case vk::PhysicalDeviceType::eVirtualGpu: return 2;
+    case vk::PhysicalDeviceType::eCpu: return 3;
+    default: return 4;
+    }
+}
+
+std::optional<std::uint32_t> computeQueueFamily(const vk::raii::PhysicalDevice& device) {
+    auto families = device.getQueueFamilyProperties();
+    for (std::uint32_t i = 0; i < families.size(); ++i)
+        if (families[i].queueFlags & vk::QueueFlagBits::eCompute) return i;
+    return std::nullopt;
+}
+
+DeviceInfo describe(const vk::raii::PhysicalDevice& device, int index) {
+    DeviceInfo info;
+    info.index = index;
+    auto chain = device.getProperties2<vk::PhysicalDeviceProperties2,
+                                       vk::PhysicalDeviceDriverProperties,
+                                       vk::PhysicalDeviceSubgroupProperties>();
+    const auto& props = chain.get<vk::PhysicalDeviceProperties2>().properties;
+    const auto& driver = chain.get<vk::PhysicalDeviceDriverProperties>();
+    info.subgroupSize = chain.get<vk::PhysicalDeviceSubgroupProperties>().subgroupSize;
+    info.driverVersion = props.driverVersion;
+    info.name = props.deviceName.data();
+    info.type = deviceTypeName(props.deviceType);
+    info.driverName = driver.driverName.data();
+    info.driverInfo = driver.driverInfo.data();
+    info.apiVersion = props.apiVersion;
+    info.hasCompute = computeQueueFamily(device).has_value();
+    info.shaderFloat64 = device.getFeatures().shaderFloat64;
+    info.maxStorageBufferRange = props.limits.maxStorageBufferRange;
+    for (int i = 0; i < 3; ++i) {
+        info.maxWorkgroupCount[i] = props.limits.maxComputeWorkGroupCount[i];
+        info.maxWorkgroupSize[i] = props.limits.maxComputeWorkGroupSize[i];
+    }
+    return info;
+}
+
+vk::raii::Instance createInstance(vk::raii::Context& context, bool validation) {
+    vk::ApplicationInfo app("vkray", 1, "vkray", 1, VK_API_VERSION_1_2);
+    std::vector<const char*> layers, extensions;
+    if (validation) {
+        bool found = false;
+        for (const auto& layer : context.enumerateInstanceLayerProperties())
+            found = found || std::strcmp(layer.layerName.data(), kValidationLayer) == 0;
+        if (!found)
+            throw Error(std::string("--validation: the layer ") + kValidationLayer +
+                        " is not installed; on Debian: apt-get install vulkan-validationlayers");
+        layers.push_back(kValidationLayer);
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    }
+    vk::InstanceCreateInfo info({}, &app, layers, extensions);
+    return vk::raii::Instance(context, info);
+}
+
+std::vector<vk::raii::PhysicalDevice> enumerate(vk::raii::Instance& instance) {
+    try {
+        return vk::raii::PhysicalDevices(instance);
+    } catch (const vk::SystemError&) {
+        return {};
+    }
+}
+
+// Index of the best device with a compute queue, or -1.
+int preferredDevice(const std::vector<DeviceInfo>& devices,
+                    const std::vector<vk::raii::PhysicalDevice>& physical) {
+    int best = -1;
+    for (size_t i = 0; i < devices.size(); ++i) {
+        if (!devices[i].hasCompute || devices[i].apiVersion < VK_API_VERSION_1_2) continue;
+        auto rank = typeRank(physical[i].getProperties().deviceType);
+        if (best < 0 || rank < typeRank(physical[size_t(best)].getProperties().deviceType))
+            best = int(i);
+    }
+    return best;
+}
+
+std::string loaderFailure(const std::exception& e) {
+    return std::string("cannot start Vulkan: ") + e.what() + "; install the Vulkan loader "
+           "(on Debian: apt-get install libvulkan1) and a driver, or render with --cpu";
+}
+
+}  // namespace
+
+std::string DeviceInfo::apiVersionString() const {
+    return std::to_string(VK_API_VERSION_MAJOR(apiVersion)) + "." +
+           std::to_string(VK_API_VERSION_MINOR(apiVersion)) + "." +
+           std::to_string(VK_API_VERSION_PATCH(apiVersion));
+}
+
+std::uint32_t Context::Impl::findMemoryType(std::uint32_t typeBits,
+                                            vk::MemoryPropertyFlags flags) const {
+    auto memory = physicalDevice.getMemoryProperties();
+    for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i)
+        if ((typeBits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & flags) == flags)
+            return i;
+    throw Error("the Vulkan device has no host-visible memory type for vkray's buffers");
+}
+
+std::vector<DeviceInfo> Context::listDevices(int* preferred) {
+    try {
+        vk::raii::Context context;
+        vk::raii::Instance instance = createInstance(context, false);
+        auto physical = enumerate(instance);
+        std::vector<DeviceInfo> devices;
+        for (size_t i = 0; i < physical.size(); ++i) devices.push_back(describe(physical[i], int(i)));
+        if (preferred) *preferred = preferredDevice(devices, physical);
+        return devices;
+    } catch (const vk::IncompatibleDriverError&) {
+        if (preferred) *preferred = -1;
+        return {};
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(loaderFailure(e));
+    }
+}
+
+Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()) {
+    Impl& s = *impl_;
+    try {
+        s.instance = createInstance(s.context, options.validation);
+    } catch (const vk::IncompatibleDriverError&) {
+        throw Error(std::string("no Vulkan driver found; ") + kDeviceAdvice);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(loaderFailure(e));
+    }
+    if (options.validation) {
+        // Every validation message becomes an error with its text.
+        vk::DebugUtilsMessengerCreateInfoEXT info(
+            {},
+            vk::DebugUtilsMessageSeverityFlagBitsEXT::eWarning |
+                vk::DebugUtilsMessageSeverityFlagBitsEXT::eError,
+            vk::DebugUtilsMessageTypeFlagBitsEXT::eGeneral |
+                vk::DebugUtilsMessageTypeFlagBitsEXT::eValidation |
+                vk::DebugUtilsMessageTypeFlagBitsEXT::ePerformance,
+            [](VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
+               const VkDebugUtilsMessengerCallbackDataEXT* data, void* count) -> VkBool32 {
+                std::fprintf(stderr, "vkray: validation: %s\n", data->pMessage);
+                ++*static_cast<std::atomic<int>*>(count);
+                return VK_FALSE;
+            },
+            &s.validationMessages);
+        s.messenger.emplace(s.instance, info);
+    }
+
+    auto physical = enumerate(s.instance);
+    if (physical.empty()) throw Error(std::string("no Vulkan device found; ") + kDeviceAdvice);
+    std::vector<DeviceInfo> devices;
+    for (size_t i = 0; i < physical.size(); ++i) devices.push_back(describe(physical[i], int(i)));
+
+    int chosen = options.deviceIndex;
+    if (chosen < 0) {
+        chosen = preferredDevice(devices, physical);
+        if (chosen < 0)
+            throw Error(std::string("no Vulkan device with a compute queue and Vulkan 1.2; ") +
+                        kDeviceAdvice);
+    } else if (chosen >= int(physical.size())) {
+        throw Error("--device " + std::to_string(chosen) + ": there are only " +
+                    std::to_string(physical.size()) +
+                    " Vulkan devices (0 .. " + std::to_string(physical.size() - 1) +
+                    "); `vkray devices` lists them");
+    } else if (!devices[size_t(chosen)].hasCompute ||
+               devices[size_t(chosen)].apiVersion < VK_API_VERSION_1_2) {
+        throw Error("--device " + std::to_string(chosen) + " (" + devices[size_t(chosen)].name +
+                    ") has no compute queue or lacks Vulkan 1.2; choose another with --device");
+    }
+    s.physicalDevice = std::move(physical[size_t(chosen)]);
+    s.info = devices[size_t(chosen)];
+    s.queueFamily = *computeQueueFamily(s.physicalDevice);
+
+    float priority = 1.0f;
+    vk::DeviceQueueCreateInfo queueInfo({}, s.queueFamily, 1, &priority);
+    vk::DeviceCreateInfo deviceInfo({}, queueInfo);
+    s.device = vk::raii::Device(s.physicalDevice, deviceInfo);
+    s.queue = s.device.getQueue(s.queueFamily, 0);
+    s.commandPool = vk::raii::CommandPool(
+        s.device, {vk::CommandPoolCreateFlagBits::eResetCommandBuffer, s.queueFamily});
+}
+
+Context::~Context() = default;
+
+const DeviceInfo& Context::device() const { return impl_->info; }
+
+int Context::validationMessages() const { return impl_->validationMessages.load(); }
+
+HostBuffer::HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUsageFlags usage)
+    : size_(size), device_(&context.device) {
+    buffer_ = vk::raii::Buffer(context.device, {{}, size, usage, vk::SharingMode::eExclusive});
+    auto requirements = buffer_.getMemoryRequirements();
+    auto properties = context.physicalDevice.getMemoryProperties();
+    std::uint32_t type = context.findMemoryType(requirements.memoryTypeBits,
+                                                vk::MemoryPropertyFlagBits::eHostVisible);
+    coherent_ = bool(properties.memoryTypes[type].propertyFlags &
+                     vk::MemoryPropertyFlagBits::eHostCoherent);
+    memory_ = vk::raii::DeviceMemory(context.device, {requirements.size, type});
+    buffer_.bindMemory(*memory_, 0);
+    mapped_ = memory_.mapMemory(0, VK_WHOLE_SIZE);
+}
+
+void HostBuffer::upload(const void* source, vk::DeviceSize bytes) {
+    std::memcpy(mapped_, source, size_t(bytes));
+    if (!coherent_) device_->flushMappedMemoryRanges(vk::MappedMemoryRange(*memory_, 0, VK_WHOLE_SIZE));
+}
+
+void HostBuffer::invalidate() {
+    if (coherent_) return;
+    device_->invalidateMappedMemoryRanges(vk::MappedMemoryRange(*memory_, 0, VK_WHOLE_SIZE));
+}
+
+}  // namespace vkray::gpu

@@ -1,0 +1,57 @@
+// The Vulkan instance, the chosen physical device, its logical device and a
+// compute queue. Vulkan types stay behind a pimpl so that this header is
+// cheap to include.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace vkray::gpu {
+
+struct DeviceInfo {
+    int index = -1;                 // position in the Vulkan enumeration (--device N)
+    std::string name;
+    std::string type;               // "discrete GPU", "integrated GPU", "CPU", ...
+    std::string driverName;
+    std::string driverInfo;
+    std::uint32_t apiVersion = 0;
+    std::uint32_t driverVersion = 0;  // vendor-encoded; printed raw and as Vulkan's major.minor.patch
+    std::uint32_t subgroupSize = 0;
+    bool hasCompute = false;
+    bool shaderFloat64 = false;
+    std::uint64_t maxStorageBufferRange = 0;
+    std::uint32_t maxWorkgroupCount[3] = {};
+    std::uint32_t maxWorkgroupSize[3] = {};
+    std::string apiVersionString() const;
+};
+
+struct ContextOptions {
+    int deviceIndex = -1;    // -1: prefer a discrete GPU, then integrated, ..., then lavapipe
+    bool validation = false; // enable VK_LAYER_KHRONOS_validation
+};
+
+class Context {
+public:
+    // Throws Error with what to install or change when there is no Vulkan
+    // loader, no device, or no usable compute device.
+    explicit Context(const ContextOptions& options = {});
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    const DeviceInfo& device() const;
+    // Validation messages seen so far (with ContextOptions::validation).
+    int validationMessages() const;
+    // Every device Vulkan reports, and the index `render` would pick.
+    static std::vector<DeviceInfo> listDevices(int* preferred = nullptr);
+
+    struct Impl;  // defined in context_impl.h (host/gpu only)
+    Impl& impl() { return *impl_; }
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vkray::gpu

@@ -1,0 +1,51 @@
+// Context internals, for host/gpu's own translation units. Members are
+// declared in creation order, so they are destroyed in reverse (Vulkan-Hpp
+// RAII: the device dies before the instance, the pool before the device).
+#pragma once
+
+#include "gpu/context.h"
+#include "gpu/vulkan_pch.h"
+
+#include <atomic>
+#include <optional>
+
+namespace vkray::gpu {
+
+struct Context::Impl {
+    std::atomic<int> validationMessages{0};  // counted by the debug messenger
+    vk::raii::Context context;
+    vk::raii::Instance instance = nullptr;
+    std::optional<vk::raii::DebugUtilsMessengerEXT> messenger;
+    vk::raii::PhysicalDevice physicalDevice = nullptr;
+    DeviceInfo info;
+    std::uint32_t queueFamily = 0;
+    vk::raii::Device device = nullptr;
+    vk::raii::Queue queue = nullptr;
+    vk::raii::CommandPool commandPool = nullptr;
+
+    // Finds a memory type with all `flags` among those `typeBits` allows.
+    std::uint32_t findMemoryType(std::uint32_t typeBits, vk::MemoryPropertyFlags flags) const;
+};
+
+// A buffer and its memory, host-visible and mapped for its whole life.
+// Member order fixes destruction order: the buffer goes before its memory.
+class HostBuffer {
+public:
+    HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUsageFlags usage);
+    vk::Buffer buffer() const { return *buffer_; }
+    vk::DeviceSize size() const { return size_; }
+    void* data() const { return mapped_; }
+    void upload(const void* source, vk::DeviceSize bytes);
+    // Makes device writes visible to the host on non-coherent memory.
+    void invalidate();
+
+private:
+    vk::DeviceSize size_;
+    const vk::raii::Device* device_;
+    bool coherent_ = true;
+    vk::raii::DeviceMemory memory_ = nullptr;
+    vk::raii::Buffer buffer_ = nullptr;
+    void* mapped_ = nullptr;
+};
+
+}  // namespace vkray::gpu

@@ -1,0 +1,216 @@
+#include "gpu/gpu_scene.h"
+
+#include "scene/error.h"
+#include "scene/scene_geometry.h"
+#include "scene/triangle_mesh.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace vkray::gpu {
+
+namespace {
+
+vec4 toVec4(const glm::dvec3& v, double w = 0) {
+    return {float(v.x), float(v.y), float(v.z), float(w)};
+}
+
+float bitsAsFloat(uint bits) {
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+uint floatBits(float f) {
+    uint bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    return bits;
+}
+
+GpuObject packObject(const SceneObject& object) {
+    GpuObject g{};
+    // M^-1 was composed in double from exact inverses; only now rounded to float.
+    const glm::dmat4& inv = object.objectFromWorld;
+    for (int row = 0; row < 3; ++row)
+        g.objectFromWorld[row] = {float(inv[0][row]), float(inv[1][row]), float(inv[2][row]),
+                                  float(inv[3][row])};
+    const Material& m = object.material;
+    g.ambient = toVec4(m.ambient);
+    g.diffuse = toVec4(m.diffuse);
+    g.specular = toVec4(m.specular, m.specularExponent);
+    g.emissive = toVec4(m.emissive);
+    const uint kind = gpuKindOf(object.type);
+    uint parameter = 0;
+    if (kind == KIND_TAPERED_CYLINDER) parameter = floatBits(float(object.taper));
+    if (kind == KIND_MESH) parameter = uint(object.mesh);
+    g.shape = {kind, parameter, 0, 0};
+    return g;
+}
+
+GpuBvhNode packNode(const BvhNode& node, uint first) {
+    return {toVec4(node.bounds.lo, bitsAsFloat(first)), toVec4(node.bounds.hi, bitsAsFloat(node.count))};
+}
+
+std::string located(const SceneObject& object, const std::string& message) {
+    return formatDiagnostic(object.loc, nullptr, "error", message);
+}
+
+// A mesh is convex when every vertex lies on the inner side of every face.
+bool isConvex(const TriangleMesh& mesh) {
+    const double scale = glm::length(mesh.bounds.hi - mesh.bounds.lo);
+    for (const TriangleMesh::Triangle& t : mesh.triangles) {
+        const glm::dvec3 a = mesh.positions[t.position[0]];
+        const glm::dvec3 n = glm::cross(mesh.positions[t.position[1]] - a,
+                                        mesh.positions[t.position[2]] - a);
+        const double length = glm::length(n);
+        if (length == 0) continue;
+        for (const glm::dvec3& p : mesh.positions)
+            if (glm::dot(p - a, n) / length > 1e-9 * scale) return false;
+    }
+    return true;
+}
+
+// The most inside-spans a CSG operand's list can hold along one ray, and the
+// span lists alive at once while evaluating it; checked against the shader's
+// fixed arrays.
+struct CsgNeeds {
+    uint spans;
+    uint stack;
+};
+
+class CsgPacker {
+public:
+    CsgPacker(const Scene& scene, GpuScene& packed) : scene_(scene), packed_(packed) {}
+
+    // Packs the tree of boolean `object`; returns its first node's index.
+    uint pack(const SceneObject& object) {
+        const uint first = uint(packed_.csgNodes.size());
+        const CsgNeeds needs = emit(object, object);
+        if (needs.spans > CSG_MAX_SPANS || needs.stack > CSG_MAX_STACK)
+            throw Error(located(object, std::string("this '") + shapeKeyword(object.type) +
+                                            "' needs up to " + std::to_string(needs.spans) +
+                                            " spans and " + std::to_string(needs.stack) +
+                                            " lists per ray; the GPU holds " +
+                                            std::to_string(CSG_MAX_SPANS) + " and " +
+                                            std::to_string(CSG_MAX_STACK) +
+                                            " (simplify the tree or render with --cpu)"));
+        packed_.csgNodes[first].node.z = uint(packed_.csgNodes.size()) - first;
+        return first;
+    }
+
+private:
+    CsgNeeds emit(const SceneObject& node, const SceneObject& root) {
+        if (isBoolean(node.type)) {
+            const CsgNeeds a = emit(node.operands.at(0), root);
+            const CsgNeeds b = emit(node.operands.at(1), root);
+            const uint op = node.type == ShapeType::Union          ? CSG_UNION
+                            : node.type == ShapeType::Intersection ? CSG_INTERSECTION
+                                                                   : CSG_DIFFERENCE;
+            packed_.csgNodes.push_back({{op, 0, 0, 0}});
+            return {a.spans + b.spans, std::max(a.stack, b.stack + 1)};
+        }
+        const uint spans = leafSpans(node, root);
+        packed_.csgNodes.push_back({{CSG_LEAF, uint(packed_.objects.size()), 0, 0}});
+        packed_.objects.push_back(packObject(node));
+        return {spans, 1};
+    }
+
+    uint leafSpans(const SceneObject& leaf, const SceneObject& root) {
+        const std::string op = shapeKeyword(root.type);
+        switch (gpuKindOf(leaf.type)) {
+        case KIND_SQUARE:
+            throw Error(located(leaf, "'square' has no inside and cannot be an operand of '" + op + "'"));
+        case KIND_TORUS: return 2;
+        case KIND_MESH: {
+            const TriangleMesh& mesh = *scene_.meshes.at(size_t(leaf.mesh));
+            if (!mesh.closed)
+                throw Error(located(leaf, "'" + std::string(shapeKeyword(leaf.type)) +
+                                              "' is not a closed surface and cannot be an operand of '" +
+                                              op + "'"));
+            if (!isConvex(mesh))
+                throw Error(located(leaf, "'" + std::string(shapeKeyword(leaf.type)) +
+                                              "' is not convex; the GPU takes only convex meshes "
+                                              "in CSG (render with --cpu)"));
+            return 1;
+        }
+        default: return 1;  // sphere, cube, tapered cylinder, plane (a half-space)
+        }
+    }
+
+    const Scene& scene_;
+    GpuScene& packed_;
+};
+
+void packMeshes(const Scene& scene, GpuScene& packed) {
+    for (const auto& mesh : scene.meshes) {
+        const uint firstNode = uint(packed.meshNodes.size());
+        const uint firstTriangle = uint(packed.triangles.size());
+        packed.meshes.push_back({{firstNode, firstTriangle, uint(mesh->triangles.size()), 0}});
+        for (const BvhNode& node : mesh->bvh.nodes) packed.meshNodes.push_back(packNode(node, node.first));
+        // Triangles in leaf order, so that a leaf's range is contiguous.
+        for (std::uint32_t index : mesh->bvh.order) {
+            const TriangleMesh::Triangle& t = mesh->triangles[index];
+            GpuTriangle g{};
+            vec4* corners[3] = {&g.p0, &g.p1, &g.p2};
+            vec4* normals[3] = {&g.n0, &g.n1, &g.n2};
+            for (int k = 0; k < 3; ++k) {
+                *corners[k] = toVec4(mesh->positions[t.position[k]]);
+                *normals[k] = toVec4(mesh->normals[t.normal[k]]);
+            }
+            packed.triangles.push_back(g);
+        }
+    }
+}
+
+}  // namespace
+
+GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
+    GpuScene packed;
+    packed.objects.reserve(scene.objects.size());
+    for (const SceneObject& object : scene.objects) {
+        if (!isBoolean(object.type) && gpuKindOf(object.type) == KIND_MESH &&
+            (object.mesh < 0 || size_t(object.mesh) >= scene.meshes.size()))
+            throw Error(located(object, std::string("'") + shapeKeyword(object.type) +
+                                            "' has no geometry loaded"));
+        packed.objects.push_back(packObject(object));
+    }
+    for (const Light& light : scene.lights)
+        packed.lights.push_back({toVec4(light.position), toVec4(light.color)});
+
+    CsgPacker csg(scene, packed);
+    for (size_t i = 0; i < scene.objects.size(); ++i)
+        if (isBoolean(scene.objects[i].type)) packed.objects[i].shape.y = csg.pack(scene.objects[i]);
+
+    if (features.kinds[KIND_MESH]) packMeshes(scene, packed);
+
+    if (features.objectBvh) {
+        const ObjectBvh objects = buildObjectBvh(scene);
+        for (const BvhNode& node : objects.bvh.nodes) packed.objectNodes.push_back(packNode(node, node.first));
+        packed.objectIndex.assign(objects.bvh.order.begin(), objects.bvh.order.end());
+        packed.unboundedFirst = uint(packed.objectIndex.size());
+        packed.unboundedCount = uint(objects.unbounded.size());
+        packed.objectIndex.insert(packed.objectIndex.end(), objects.unbounded.begin(),
+                                  objects.unbounded.end());
+        // featuresOf asks for the BVH only with bounded objects: the root exists.
+        if (packed.objectNodes.empty()) throw Error("internal: an object BVH without nodes");
+    }
+    return packed;
+}
+
+FrameParams packFrame(const Scene& scene, const GpuScene& packed, const CameraBasis& camera,
+                      const RenderSettings& settings) {
+    FrameParams f{};
+    f.eye = toVec4(camera.eye, camera.tanHalfFov);
+    f.cameraU = toVec4(camera.u, camera.aspect);
+    f.cameraV = toVec4(camera.v);
+    f.cameraN = toVec4(camera.n);
+    f.background = toVec4(scene.background);
+    f.globalAmbient = toVec4(scene.globalAmbient);
+    f.image = {uint(settings.width), uint(settings.height), uint(settings.block),
+               uint(scene.objects.size())};
+    f.counts = {uint(scene.lights.size()), uint(packed.objectNodes.size()), packed.unboundedFirst,
+                packed.unboundedCount};
+    return f;
+}
+
+}  // namespace vkray::gpu

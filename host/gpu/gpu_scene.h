@@ -1,0 +1,37 @@
+// The scene as the shader reads it: the std430 arrays of shaders/layout.h,
+// packed from the double-precision Scene (M^-1 rounded to float only here).
+// Everything the shader bounds (BVH depth, CSG spans and stack) is checked
+// here, so a scene beyond a bound is refused with its place before rendering.
+#pragma once
+
+#include "gpu/shader_variant.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+#include "shaders/layout.h"
+
+#include <vector>
+
+namespace vkray::gpu {
+
+struct GpuScene {
+    std::vector<GpuObject> objects;  // the scene's objects (ids), then CSG primitives
+    std::vector<GpuLight> lights;
+    // features.objectBvh: nodes over the bounded objects; objectIndex holds
+    // the leaves' object indices, then the unbounded objects'.
+    std::vector<GpuBvhNode> objectNodes;
+    std::vector<uint> objectIndex;
+    uint unboundedFirst = 0, unboundedCount = 0;
+    // features.kinds[KIND_MESH]:
+    std::vector<GpuMesh> meshes;  // indexed like Scene::meshes
+    std::vector<GpuBvhNode> meshNodes;
+    std::vector<GpuTriangle> triangles;
+    // features.kinds[KIND_BOOLEAN]: every tree in post order.
+    std::vector<GpuCsgNode> csgNodes;
+};
+
+GpuScene packScene(const Scene& scene, const ShaderFeatures& features);
+
+FrameParams packFrame(const Scene& scene, const GpuScene& packed, const CameraBasis& camera,
+                      const RenderSettings& settings);
+
+}  // namespace vkray::gpu

@@ -1,0 +1,297 @@
+#include "gpu/gpu_tracer.h"
+
+#include "gpu/context_impl.h"
+#include "gpu/gpu_scene.h"
+#include "gpu/shader_variant.h"
+#include "scene/error.h"
+#include "shaders/layout.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+namespace vkray::gpu {
+
+// The compute pipeline of one shader variant, kept while the variant stays
+// the same (lavapipe compiles SPIR-V to machine code at pipeline creation).
+struct Pipeline {
+    std::string key;
+    vk::raii::DescriptorSetLayout setLayout = nullptr;
+    vk::raii::PipelineLayout layout = nullptr;
+    vk::raii::ShaderModule module = nullptr;
+    vk::raii::Pipeline pipeline = nullptr;
+};
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+template <typename T>
+std::unique_ptr<HostBuffer> makeBuffer(Context::Impl& c, const std::vector<T>& items,
+                                       vk::BufferUsageFlags usage) {
+    // Vulkan forbids empty buffers: an empty array still gets one element.
+    const vk::DeviceSize bytes = sizeof(T) * std::max<size_t>(items.size(), 1);
+    if (bytes > c.info.maxStorageBufferRange)
+        throw Error("the scene needs a " + std::to_string(bytes) + "-byte buffer, more than " +
+                    c.info.name + " allows (" + std::to_string(c.info.maxStorageBufferRange) +
+                    " bytes); use a smaller scene or another --device");
+    auto buffer = std::make_unique<HostBuffer>(c, bytes, usage);
+    if (!items.empty()) buffer->upload(items.data(), sizeof(T) * items.size());
+    return buffer;
+}
+
+
+// Everything one render needs on the device: the scene's buffers, the
+// descriptor set and a command buffer; dispatchTile() traces one tile and
+// waits for it.
+class TracePass {
+public:
+    TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
+              const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
+              int tile)
+        : c_(c), pipeline_(pipeline) {
+        const GpuScene packed = packScene(scene, features);
+        const std::vector<FrameParams> frameParams{packFrame(scene, packed, camera, settings)};
+        using Usage = vk::BufferUsageFlagBits;
+        // Only the buffers this variant reads (the same list as its bindings).
+        add(BINDING_FRAME, makeBuffer(c, frameParams, Usage::eUniformBuffer));
+        add(BINDING_OBJECTS, makeBuffer(c, packed.objects, Usage::eStorageBuffer));
+        add(BINDING_LIGHTS, makeBuffer(c, packed.lights, Usage::eStorageBuffer));
+        add(BINDING_PIXELS, makeBuffer(c, std::vector<GpuPixel>(size_t(tile) * size_t(tile)),
+                                       Usage::eStorageBuffer));
+        if (features.debugPixel) {
+            // A header and one entry per object and per light, zeroed.
+            static_assert(sizeof(GpuDebugHeader) == 4 * sizeof(GpuDebugEntry));
+            const size_t entries = scene.objects.size() + scene.lights.size();
+            add(BINDING_DEBUG, makeBuffer(c, std::vector<GpuDebugEntry>(4 + entries),
+                                          Usage::eStorageBuffer));
+        }
+        if (features.objectBvh) {
+            add(BINDING_OBJECT_NODES, makeBuffer(c, packed.objectNodes, Usage::eStorageBuffer));
+            add(BINDING_OBJECT_INDEX, makeBuffer(c, packed.objectIndex, Usage::eStorageBuffer));
+        }
+        if (features.kinds[KIND_MESH]) {
+            add(BINDING_MESHES, makeBuffer(c, packed.meshes, Usage::eStorageBuffer));
+            add(BINDING_MESH_NODES, makeBuffer(c, packed.meshNodes, Usage::eStorageBuffer));
+            add(BINDING_TRIANGLES, makeBuffer(c, packed.triangles, Usage::eStorageBuffer));
+        }
+        if (features.kinds[KIND_BOOLEAN])
+            add(BINDING_CSG_NODES, makeBuffer(c, packed.csgNodes, Usage::eStorageBuffer));
+
+        const std::array<vk::DescriptorPoolSize, 2> poolSizes{{
+            {vk::DescriptorType::eUniformBuffer, 1},
+            {vk::DescriptorType::eStorageBuffer, uint(buffers_.size())},
+        }};
+        pool_ = vk::raii::DescriptorPool(
+            c.device, {vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, poolSizes});
+        set_ = std::move(vk::raii::DescriptorSets(c.device, {*pool_, *pipeline.setLayout}).front());
+        std::vector<vk::DescriptorBufferInfo> infos;
+        infos.reserve(buffers_.size());
+        std::vector<vk::WriteDescriptorSet> writes;
+        for (const auto& [binding, buffer] : buffers_) {
+            infos.emplace_back(buffer->buffer(), 0, VK_WHOLE_SIZE);
+            writes.emplace_back(*set_, binding, 0, 1,
+                                binding == BINDING_FRAME ? vk::DescriptorType::eUniformBuffer
+                                                         : vk::DescriptorType::eStorageBuffer,
+                                nullptr, &infos.back());
+        }
+        c.device.updateDescriptorSets(writes, nullptr);
+
+        commands_ = std::move(vk::raii::CommandBuffers(
+                                  c.device, {*c.commandPool, vk::CommandBufferLevel::ePrimary, 1})
+                                  .front());
+        fence_ = vk::raii::Fence(c.device, vk::FenceCreateInfo{});
+    }
+
+    // Traces the rays of the tile at (tx, ty) of w x h pixels and waits; the
+    // tile's pixels are then in pixels(), row-major with stride w.
+    void dispatchTile(int tx, int ty, int w, int h, int block) {
+        const TileParams tileParams{{uint(tx), uint(ty), uint(w), uint(h)}};
+        const uint raysX = uint((w + block - 1) / block), raysY = uint((h + block - 1) / block);
+        commands_.reset();
+        commands_.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+        commands_.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.pipeline);
+        commands_.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.layout, 0, *set_,
+                                     nullptr);
+        commands_.pushConstants<TileParams>(*pipeline_.layout, vk::ShaderStageFlagBits::eCompute,
+                                            0, tileParams);
+        commands_.dispatch((raysX + WORKGROUP_X - 1) / WORKGROUP_X,
+                           (raysY + WORKGROUP_Y - 1) / WORKGROUP_Y, 1);
+        // Shader writes must be visible to the host before the read-back.
+        vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
+        commands_.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
+                                  vk::PipelineStageFlagBits::eHost, {}, toHost, nullptr, nullptr);
+        commands_.end();
+        c_.queue.submit(vk::SubmitInfo({}, {}, *commands_), *fence_);
+        if (c_.device.waitForFences(*fence_, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
+            throw Error("the GPU did not finish a tile");
+        c_.device.resetFences(*fence_);
+        buffer(BINDING_PIXELS).invalidate();
+        if (buffers_.count(BINDING_DEBUG)) buffer(BINDING_DEBUG).invalidate();
+    }
+
+    const GpuPixel* pixels() const {
+        return static_cast<const GpuPixel*>(buffer(BINDING_PIXELS).data());
+    }
+    const GpuDebugHeader& debugHeader() const {
+        return *static_cast<const GpuDebugHeader*>(buffer(BINDING_DEBUG).data());
+    }
+    const GpuDebugEntry* debugEntries() const {
+        return reinterpret_cast<const GpuDebugEntry*>(&debugHeader() + 1);
+    }
+
+private:
+    void add(uint binding, std::unique_ptr<HostBuffer> buffer) {
+        buffers_.emplace(binding, std::move(buffer));
+    }
+    HostBuffer& buffer(uint binding) const { return *buffers_.at(binding); }
+
+    Context::Impl& c_;
+    const Pipeline& pipeline_;
+    std::map<uint, std::unique_ptr<HostBuffer>> buffers_;  // by binding
+    vk::raii::DescriptorPool pool_ = nullptr;
+    vk::raii::DescriptorSet set_ = nullptr;
+    vk::raii::CommandBuffer commands_ = nullptr;
+    vk::raii::Fence fence_ = nullptr;
+};
+
+glm::dvec3 toDvec3(const vec4& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+GpuTracer::GpuTracer(Context& context, GpuRenderOptions options)
+    : context_(context), options_(std::move(options)) {}
+
+GpuTracer::~GpuTracer() = default;
+
+const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRenderStats& stats) {
+    const ShaderSource source{options_.shaderDirectory, "trace.comp",
+                              definesFor(features, options_.userDefines)};
+    stats.shader = loadOrCompile(source);
+    stats.variant = describe(features);
+    if (pipeline_ && pipeline_->key == stats.shader.key) return *pipeline_;
+
+    Context::Impl& c = context_.impl();
+    auto p = std::make_unique<Pipeline>();
+    p->key = stats.shader.key;
+    std::vector<vk::DescriptorSetLayoutBinding> bindings;
+    const auto bind = [&](uint binding, vk::DescriptorType type) {
+        bindings.emplace_back(binding, type, 1, vk::ShaderStageFlagBits::eCompute);
+    };
+    const auto storage = vk::DescriptorType::eStorageBuffer;
+    bind(BINDING_FRAME, vk::DescriptorType::eUniformBuffer);
+    for (uint binding : {BINDING_OBJECTS, BINDING_LIGHTS, BINDING_PIXELS}) bind(binding, storage);
+    if (features.debugPixel) bind(BINDING_DEBUG, storage);
+    if (features.objectBvh)
+        for (uint binding : {BINDING_OBJECT_NODES, BINDING_OBJECT_INDEX}) bind(binding, storage);
+    if (features.kinds[KIND_MESH])
+        for (uint binding : {BINDING_MESHES, BINDING_MESH_NODES, BINDING_TRIANGLES}) bind(binding, storage);
+    if (features.kinds[KIND_BOOLEAN]) bind(BINDING_CSG_NODES, storage);
+    p->setLayout = vk::raii::DescriptorSetLayout(c.device, {{}, bindings});
+    const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0, sizeof(TileParams));
+    p->layout = vk::raii::PipelineLayout(c.device, {{}, *p->setLayout, pushRange});
+    p->module = vk::raii::ShaderModule(c.device, {{}, stats.shader.spirv});
+    p->pipeline = vk::raii::Pipeline(
+        c.device, nullptr,
+        vk::ComputePipelineCreateInfo(
+            {}, {{}, vk::ShaderStageFlagBits::eCompute, *p->module, "main"}, *p->layout));
+    pipeline_ = std::move(p);
+    return *pipeline_;
+}
+
+Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
+                        const RenderSettings& settings, GpuRenderStats* stats) {
+    if (settings.width < 1 || settings.height < 1 || settings.block < 1)
+        throw Error("render: width, height and block must be at least 1");
+    GpuRenderStats local;
+    GpuRenderStats& st = stats ? *stats : local;
+
+    const auto setupStart = Clock::now();
+    const ShaderFeatures features = featuresOf(scene, options_.allFeatures);
+    const Pipeline& pipeline = pipelineFor(features, st);
+    // Tiles hold whole blocks, so a block never straddles two dispatches.
+    const int block = settings.block;
+    const int tile = std::max(block, options_.tileSize / block * block);
+    TracePass pass(context_.impl(), pipeline, features, scene, camera, settings, tile);
+    st.setupSeconds = secondsSince(setupStart) - st.shader.seconds;
+
+    Frame frame(settings.width, settings.height);
+    const auto renderStart = Clock::now();
+    st.tiles = 0;
+    st.rays = 0;
+    for (int ty = 0; ty < settings.height; ty += tile) {
+        for (int tx = 0; tx < settings.width; tx += tile) {
+            const int w = std::min(tile, settings.width - tx);
+            const int h = std::min(tile, settings.height - ty);
+            pass.dispatchTile(tx, ty, w, h, block);
+            const GpuPixel* pixels = pass.pixels();
+            for (int y = 0; y < h; ++y) {
+                for (int x = 0; x < w; ++x) {
+                    const GpuPixel& p = pixels[size_t(y) * size_t(w) + size_t(x)];
+                    const size_t i = frame.index(tx + x, ty + y);
+                    frame.color[i] = {p.color.x, p.color.y, p.color.z};
+                    frame.depth[i] = p.color.w;
+                    frame.normal[i] = {p.normal.x, p.normal.y, p.normal.z};
+                    std::memcpy(&frame.id[i], &p.normal.w, sizeof(std::int32_t));
+                }
+            }
+            st.rays += size_t((w + block - 1) / block) * size_t((h + block - 1) / block);
+            ++st.tiles;
+        }
+    }
+    st.renderSeconds = secondsSince(renderStart);
+    return frame;
+}
+
+PixelTrace GpuTracer::tracePixel(const Scene& scene, const CameraBasis& camera,
+                                 const RenderSettings& settings, int x, int y,
+                                 GpuRenderStats* stats) {
+    if (x < 0 || y < 0 || x >= settings.width || y >= settings.height)
+        throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                    ") is outside the " + std::to_string(settings.width) + "x" +
+                    std::to_string(settings.height) + " image");
+    GpuRenderStats local;
+    GpuRenderStats& st = stats ? *stats : local;
+    ShaderFeatures features = featuresOf(scene, options_.allFeatures);
+    features.debugPixel = true;
+    const Pipeline& pipeline = pipelineFor(features, st);
+    TracePass pass(context_.impl(), pipeline, features, scene, camera, settings, 1);
+    // A one-pixel tile at the corner of the pixel's block: its one ray is the block's.
+    const int block = std::max(settings.block, 1);
+    pass.dispatchTile(x - x % block, y - y % block, 1, 1, block);
+
+    const GpuDebugHeader& header = pass.debugHeader();
+    const GpuDebugEntry* entries = pass.debugEntries();
+    PixelTrace trace;
+    trace.x = x;
+    trace.y = y;
+    trace.rayOrigin = toDvec3(header.rayOrigin);
+    trace.rayDirection = toDvec3(header.rayDirection);
+    for (uint i = 0; i < header.counts.x; ++i) {
+        const float t = entries[i].first.w;
+        trace.objects.push_back({toDvec3(entries[i].first), toDvec3(entries[i].second),
+                                 std::isinf(t) ? std::nullopt : std::optional<double>(t)});
+    }
+    std::memcpy(&trace.hitObject, &header.normal.w, sizeof(std::int32_t));
+    if (trace.hitObject >= 0) {
+        trace.t = header.hitPoint.w;
+        trace.point = toDvec3(header.hitPoint);
+        trace.normal = toDvec3(header.normal);
+        trace.emissive = toDvec3(header.emissive);
+        trace.ambient = toDvec3(header.ambient);
+    }
+    for (uint i = 0; i < header.counts.y; ++i) {
+        const GpuDebugEntry& e = entries[header.counts.x + i];
+        trace.lights.push_back({e.first.w, e.second.w, toDvec3(e.first), toDvec3(e.second)});
+    }
+    trace.color = toDvec3(header.color);
+    return trace;
+}
+
+}  // namespace vkray::gpu

@@ -1,0 +1,63 @@
+// The GPU renderer: packs the scene into the std430 arrays of
+// shaders/layout.h, compiles (or loads from cache) the shader variant the
+// scene needs, and dispatches it in tiles.
+#pragma once
+
+#include "gpu/context.h"
+#include "gpu/shader_variant.h"
+#include "gpu/spirv_cache.h"
+#include "image/frame.h"
+#include "image/pixel_trace.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace vkray::gpu {
+
+struct GpuRenderOptions {
+    std::string shaderDirectory;
+    bool allFeatures = false;  // compile every shape in, whatever the scene uses
+    int tileSize = 256;        // pixels per tile side (rounded to a multiple of the block)
+    Defines userDefines;       // -D NAME=VALUE, after the variant's own
+};
+
+struct GpuRenderStats {
+    double renderSeconds = 0;  // the dispatch loop, tiles read back included
+    double setupSeconds = 0;   // buffers, pipeline (shader compile excluded)
+    CompiledShader shader;     // SPIR-V, key, cache hit, compile/load time
+    std::string variant;       // describe(features), e.g. "sphere+cube"
+    std::size_t tiles = 0;
+    std::size_t rays = 0;      // primary rays traced
+};
+
+struct Pipeline;
+
+class GpuTracer {
+public:
+    GpuTracer(Context& context, GpuRenderOptions options);
+
+    ~GpuTracer();
+
+    Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
+                 GpuRenderStats* stats = nullptr);
+
+    // `vkray pixel`: traces pixel (x, y) alone with the debug-pixel variant,
+    // which records every object test and shading term.
+    PixelTrace tracePixel(const Scene& scene, const CameraBasis& camera,
+                          const RenderSettings& settings, int x, int y,
+                          GpuRenderStats* stats = nullptr);
+
+private:
+    const Pipeline& pipelineFor(const ShaderFeatures& features, GpuRenderStats& stats);
+
+    Context& context_;
+    GpuRenderOptions options_;
+    std::unique_ptr<Pipeline> pipeline_;  // the last variant's, reused while it stays
+};
+
+}  // namespace vkray::gpu

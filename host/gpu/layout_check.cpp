@@ -1,0 +1,57 @@
+// The host's view of shaders/layout.h must match std430/std140 exactly: every
+// size and offset is checked here at compile time.
+#include "shaders/layout.h"
+
+#include "gpu/shader_variant.h"
+#include "scene/bvh.h"
+
+#include <cstddef>
+
+namespace vkray::gpu {
+
+static_assert(sizeof(vec4) == 16 && alignof(vec4) == 16);
+static_assert(sizeof(uvec4) == 16 && alignof(uvec4) == 16);
+
+static_assert(offsetof(GpuObject, objectFromWorld) == 0);
+static_assert(offsetof(GpuObject, ambient) == 48);
+static_assert(offsetof(GpuObject, diffuse) == 64);
+static_assert(offsetof(GpuObject, specular) == 80);
+static_assert(offsetof(GpuObject, emissive) == 96);
+static_assert(offsetof(GpuObject, shape) == 112);
+static_assert(sizeof(GpuObject) == 128);
+
+static_assert(offsetof(GpuLight, position) == 0);
+static_assert(offsetof(GpuLight, color) == 16);
+static_assert(sizeof(GpuLight) == 32);
+
+static_assert(offsetof(FrameParams, eye) == 0);
+static_assert(offsetof(FrameParams, cameraU) == 16);
+static_assert(offsetof(FrameParams, cameraV) == 32);
+static_assert(offsetof(FrameParams, cameraN) == 48);
+static_assert(offsetof(FrameParams, background) == 64);
+static_assert(offsetof(FrameParams, globalAmbient) == 80);
+static_assert(offsetof(FrameParams, image) == 96);
+static_assert(offsetof(FrameParams, counts) == 112);
+static_assert(sizeof(FrameParams) == 128);
+
+static_assert(sizeof(TileParams) == 16);
+
+static_assert(offsetof(GpuPixel, color) == 0);
+static_assert(offsetof(GpuPixel, normal) == 16);
+static_assert(sizeof(GpuPixel) == 32);
+
+static_assert(offsetof(GpuDebugHeader, color) == 96);
+static_assert(offsetof(GpuDebugHeader, counts) == 112);
+static_assert(sizeof(GpuDebugHeader) == 128);
+static_assert(sizeof(GpuDebugEntry) == 32);
+
+static_assert(sizeof(GpuBvhNode) == 32);
+static_assert(sizeof(GpuMesh) == 16);
+static_assert(sizeof(GpuTriangle) == 96);
+static_assert(sizeof(GpuCsgNode) == 16);
+
+static_assert(kGpuKinds.size() == KIND_COUNT);
+static_assert(BVH_STACK_SIZE == kMaxBvhDepth, "the shader's BVH stack holds the deepest BVH");
+static_assert(TORUS_MAJOR_RADIUS == kTorusMajorRadius && TORUS_TUBE_RADIUS == kTorusTubeRadius);
+
+}  // namespace vkray::gpu

@@ -1,0 +1,125 @@
+#include "gpu/shader_compiler.h"
+
+#include "scene/error.h"
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <sstream>
+
+namespace vkray::gpu {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// glslang's process-wide state: initialised once, finalised at exit.
+struct GlslangProcess {
+    GlslangProcess() { glslang::InitializeProcess(); }
+    ~GlslangProcess() { glslang::FinalizeProcess(); }
+};
+
+void ensureGlslang() {
+    static GlslangProcess process;
+}
+
+bool readText(const fs::path& path, std::string& text) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return false;
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    text = buffer.str();
+    return true;
+}
+
+// Resolves `#include "x"` relative to the including file, then to the shader
+// folder, and never outside the shader folder.
+class FolderIncluder : public glslang::TShader::Includer {
+public:
+    explicit FolderIncluder(fs::path root) : root_(fs::weakly_canonical(std::move(root))) {}
+
+    IncludeResult* includeLocal(const char* header, const char* includer, size_t) override {
+        fs::path from = fs::path(includer).parent_path();
+        if (auto* result = tryInclude(from / header)) return result;
+        return tryInclude(root_ / header);
+    }
+    IncludeResult* includeSystem(const char* header, const char*, size_t) override {
+        return tryInclude(root_ / header);
+    }
+    void releaseInclude(IncludeResult* result) override {
+        if (!result) return;
+        delete static_cast<std::string*>(result->userData);
+        delete result;
+    }
+
+private:
+    IncludeResult* tryInclude(const fs::path& candidate) {
+        fs::path path = fs::weakly_canonical(candidate);
+        auto [rootEnd, _] = std::mismatch(root_.begin(), root_.end(), path.begin(), path.end());
+        if (rootEnd != root_.end()) return nullptr;  // outside the shader folder
+        auto* text = new std::string;
+        if (!readText(path, *text)) {
+            delete text;
+            return nullptr;
+        }
+        return new IncludeResult(path.string(), text->data(), text->size(), text);
+    }
+    fs::path root_;
+};
+
+}  // namespace
+
+std::string glslangVersion() {
+    const glslang::Version v = glslang::GetVersion();
+    return std::to_string(v.major) + "." + std::to_string(v.minor) + "." +
+           std::to_string(v.patch) + v.flavor;
+}
+
+std::vector<std::uint32_t> compileComputeShader(const ShaderSource& source) {
+    ensureGlslang();
+    const fs::path mainPath = fs::path(source.directory) / source.mainFile;
+    std::string text;
+    if (!readText(mainPath, text))
+        throw Error("cannot read shader '" + mainPath.string() +
+                    "'; pass the shader folder with --shader-dir DIR");
+
+    std::string preamble;
+    for (const auto& [name, value] : source.defines)
+        preamble += "#define " + name + " " + value + "\n";
+
+    glslang::TShader shader(EShLangCompute);
+    const std::string name = mainPath.string();
+    const char* texts[] = {text.c_str()};
+    const int lengths[] = {int(text.size())};
+    const char* names[] = {name.c_str()};
+    shader.setStringsWithLengthsAndNames(texts, lengths, names, 1);
+    shader.setPreamble(preamble.c_str());
+    shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
+
+    FolderIncluder includer(source.directory);
+    const auto messages = EShMessages(EShMsgSpvRules | EShMsgVulkanRules);
+    if (!shader.parse(GetDefaultResources(), 460, false, messages, includer))
+        throw Error("shader compile failed (" + name + "):\n" + shader.getInfoLog());
+
+    glslang::TProgram program;
+    program.addShader(&shader);
+    if (!program.link(messages))
+        throw Error("shader link failed (" + name + "):\n" + program.getInfoLog());
+
+    std::vector<std::uint32_t> spirv;
+    spv::SpvBuildLogger logger;
+    glslang::SpvOptions options;
+    options.disableOptimizer = false;
+    glslang::GlslangToSpv(*program.getIntermediate(EShLangCompute), spirv, &logger, &options);
+    if (spirv.empty()) throw Error("SPIR-V generation failed (" + name + "): " + logger.getAllMessages());
+    return spirv;
+}
+
+}  // namespace vkray::gpu

@@ -1,0 +1,105 @@
+#include "gpu/spirv_cache.h"
+
+#include "image/image_io.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace vkray::gpu {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::uint32_t kSpirvMagic = 0x07230203;
+
+struct Fnv1a {
+    std::uint64_t hash = 0xcbf29ce484222325ull;
+    void add(const std::string& bytes) {
+        for (unsigned char c : bytes) hash = (hash ^ c) * 0x100000001b3ull;
+        hash = (hash ^ 0xff) * 0x100000001b3ull;  // separator: "ab","c" != "a","bc"
+    }
+};
+
+bool isShaderSource(const fs::path& path) {
+    const std::string ext = path.extension().string();
+    return ext == ".comp" || ext == ".glsl" || ext == ".h";
+}
+
+}  // namespace
+
+std::string spirvCacheDirectory() {
+    if (const char* dir = std::getenv("VKRAY_CACHE_DIR"); dir && *dir) return dir;
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+        return (fs::path(xdg) / "vkray").string();
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return (fs::path(home) / ".cache" / "vkray").string();
+    return (fs::temp_directory_path() / "vkray-cache").string();
+}
+
+std::string spirvCacheKey(const ShaderSource& source) {
+    Fnv1a h;
+    h.add(glslangVersion());
+    h.add(source.mainFile);
+    for (const auto& [name, value] : source.defines) {
+        h.add(name);
+        h.add(value);
+    }
+    std::vector<fs::path> files;
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(source.directory, ec), end; !ec && it != end;
+         it.increment(ec))
+        if (it->is_regular_file() && isShaderSource(it->path())) files.push_back(it->path());
+    std::sort(files.begin(), files.end());
+    for (const fs::path& file : files) {
+        std::ifstream in(file, std::ios::binary);
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        h.add(fs::relative(file, source.directory).string());
+        h.add(bytes.str());
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.hash));
+    return hex;
+}
+
+CompiledShader loadOrCompile(const ShaderSource& source) {
+    const auto start = std::chrono::steady_clock::now();
+    CompiledShader result;
+    result.key = spirvCacheKey(source);
+    const fs::path file = fs::path(spirvCacheDirectory()) / (result.key + ".spv");
+
+    std::ifstream in(file, std::ios::binary);
+    if (in) {
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        const std::string data = bytes.str();
+        if (data.size() >= 20 && data.size() % 4 == 0) {
+            result.spirv.resize(data.size() / 4);
+            std::copy(data.begin(), data.end(), reinterpret_cast<char*>(result.spirv.data()));
+            result.cacheHit = result.spirv[0] == kSpirvMagic;
+        }
+    }
+    if (!result.cacheHit) {
+        result.spirv = compileComputeShader(source);
+        std::error_code ec;
+        fs::create_directories(file.parent_path(), ec);
+        try {
+            writeFileAtomically(file.string(),
+                                std::string(reinterpret_cast<const char*>(result.spirv.data()),
+                                            result.spirv.size() * 4));
+        } catch (const std::exception&) {
+            // An unwritable cache costs only the next compile.
+        }
+    }
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace vkray::gpu

@@ -1,0 +1,407 @@
+#include "image/image_io.h"
+
+#include <fcntl.h>
+#include <stb_image.h>
+#include <stb_image_write.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "scene/error.h"
+
+namespace vkray {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Larger sides are certainly a corrupt header; refusing them early gives a
+// clear message instead of a size computation that overflows or a huge allocation.
+constexpr long kMaxPfmSide = kMaxImageSide;
+
+// The message for an image whose header asks for more pixels than vkray reads.
+std::string tooManyPixels(const std::string& path, long long width, long long height) {
+    return path + ": the image is " + std::to_string(width) + "x" + std::to_string(height) +
+           ", above vkray's limit of " + std::to_string(kMaxImagePixels) + " pixels (" +
+           std::to_string(kMaxImageSide) + " per side)";
+}
+
+std::string errnoText(int error) {
+    return std::strerror(error);
+}
+
+// ".PNG" -> ".png"; empty when the path has no extension.
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+enum class Format { Png, Pfm };
+
+Format formatOf(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    if (ext == ".png") return Format::Png;
+    if (ext == ".pfm") return Format::Pfm;
+    throw Error(path + ": unsupported image format '" + ext + "' (use .png or .pfm)");
+}
+
+void requireWritable(const std::string& path, const Image& image) {
+    const bool sizeOk =
+        image.width > 0 && image.height > 0 && (image.channels == 1 || image.channels == 3) &&
+        image.pixels.size() == size_t(image.width) * size_t(image.height) * size_t(image.channels);
+    if (!sizeOk)
+        throw Error("cannot write " + path + ": the image is " + std::to_string(image.width) + "x" +
+                    std::to_string(image.height) + " with " + std::to_string(image.channels) +
+                    " channel(s) and " + std::to_string(image.pixels.size()) +
+                    " values; only non-empty 1- or 3-channel images with matching data can be "
+                    "written");
+}
+
+struct FileCloser {
+    int fd;
+    ~FileCloser() { ::close(fd); }
+};
+
+std::string readFile(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw Error("cannot read " + path + ": " + errnoText(errno));
+    const FileCloser closer{fd};  // on every exit, including the throws below
+    struct stat info {};
+    if (::fstat(fd, &info) != 0) throw Error("cannot read " + path + ": " + errnoText(errno));
+    if (S_ISDIR(info.st_mode)) throw Error("cannot read " + path + ": " + errnoText(EISDIR));
+    std::string bytes;
+    if (S_ISREG(info.st_mode)) bytes.reserve(size_t(info.st_size));
+    char buffer[1 << 16];
+    for (;;) {
+        const ssize_t n = ::read(fd, buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw Error("cannot read " + path + ": " + errnoText(errno));
+        if (n == 0) break;
+        bytes.append(buffer, size_t(n));
+    }
+    return bytes;
+}
+
+// ---- PNG -------------------------------------------------------------------
+
+unsigned char toByte(float v) {
+    if (std::isnan(v)) return 0;
+    return static_cast<unsigned char>(std::lround(double(std::clamp(v, 0.0f, 1.0f)) * 255.0));
+}
+
+void appendToString(void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+}
+
+std::string encodePng(const std::string& path, const Image& image) {
+    std::vector<unsigned char> bytes(image.pixels.size());
+    std::transform(image.pixels.begin(), image.pixels.end(), bytes.begin(), toByte);
+    std::string png;
+    if (!stbi_write_png_to_func(appendToString, &png, image.width, image.height, image.channels,
+                                bytes.data(), image.width * image.channels))
+        throw Error("cannot write " + path + ": PNG encoding failed");
+    return png;
+}
+
+std::uint32_t bigEndian32(const std::string& bytes, size_t at) {
+    const auto byte = [&](size_t i) { return std::uint32_t(std::uint8_t(bytes[at + i])); };
+    return byte(0) << 24 | byte(1) << 16 | byte(2) << 8 | byte(3);
+}
+
+// Walks the PNG's chunks before stb does, for two things fuzzing found
+// (fuzz/image_fuzz.cpp; tests/image/image_decode_test.cpp):
+// - a chunk whose length runs past the end of the file is refused here: stb
+//   would first allocate that length (up to 4 GB, for a 70-byte file);
+// - stb_image 2.27 copies a first IDAT chunk of length 0 through a null
+//   pointer (memcpy(NULL, p, 0): undefined behaviour). Such chunks carry no
+//   data, so they are dropped.
+// Bytes that do not start like a PNG come back as they are (stb says what is
+// wrong); chunks after IEND are not looked at (decoders ignore them).
+std::string checkedPngChunks(const std::string& path, const std::string& bytes) {
+    constexpr size_t kSignature = 8, kLengthAndType = 8, kCrc = 4;
+    if (bytes.compare(0, kSignature, "\x89PNG\r\n\x1a\n") != 0) return bytes;
+    std::vector<size_t> emptyIdat;
+    for (size_t at = kSignature; at + kLengthAndType <= bytes.size();) {
+        const size_t length = bigEndian32(bytes, at);
+        std::string type = bytes.substr(at + 4, 4);
+        const size_t left = bytes.size() - at - kLengthAndType;  // data and CRC must fit
+        if (length > left || left - length < kCrc) {
+            for (char& c : type)
+                if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+            throw Error(path + ": corrupt PNG: the '" + type + "' chunk at byte " +
+                        std::to_string(at) + " runs past the end of the file (it claims " +
+                        std::to_string(length) + " bytes of data; " + std::to_string(left) +
+                        " bytes are left)");
+        }
+        if (type == "IEND") break;
+        if (length == 0 && type == "IDAT") emptyIdat.push_back(at);
+        at += kLengthAndType + length + kCrc;
+    }
+    if (emptyIdat.empty()) return bytes;
+    std::string kept;
+    kept.reserve(bytes.size());
+    size_t from = 0;
+    for (const size_t chunk : emptyIdat) {
+        kept.append(bytes, from, chunk - from);
+        from = chunk + kLengthAndType + kCrc;
+    }
+    kept.append(bytes, from, std::string::npos);
+    return kept;
+}
+
+Image decodePng(const std::string& path, const std::string& fileBytes) {
+    if (fileBytes.size() > size_t(INT32_MAX)) throw Error(path + ": PNG file is too large");
+    const std::string bytes = checkedPngChunks(path, fileBytes);
+    // stb allocates the whole image before it finds out that the data is
+    // missing: check the size the header claims first.
+    int claimedWidth = 0, claimedHeight = 0, claimedChannels = 0;
+    if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()),
+                              &claimedWidth, &claimedHeight, &claimedChannels) &&
+        (claimedWidth > kMaxImageSide || claimedHeight > kMaxImageSide ||
+         (long long)claimedWidth * claimedHeight > kMaxImagePixels))
+        throw Error(tooManyPixels(path, claimedWidth, claimedHeight));
+    Image image;
+    int fileChannels = 0;
+    stbi_uc* data =
+        stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()),
+                              &image.width, &image.height, &fileChannels, 3);
+    if (!data)
+        throw Error(path + ": not a readable PNG file (" + std::string(stbi_failure_reason()) +
+                    ")");
+    image.channels = 3;  // forced above, whatever the file holds
+    const size_t count = size_t(image.width) * size_t(image.height) * 3;
+    image.pixels.resize(count);
+    for (size_t i = 0; i < count; ++i) image.pixels[i] = float(data[i]) / 255.0f;
+    stbi_image_free(data);
+    return image;
+}
+
+// ---- PFM -------------------------------------------------------------------
+
+void appendLittleEndian(std::string& out, float v) {
+    const auto bits = std::bit_cast<std::uint32_t>(v);
+    for (int shift = 0; shift < 32; shift += 8) out.push_back(char((bits >> shift) & 0xffu));
+}
+
+std::string encodePfm(const Image& image) {
+    char header[64];
+    const int headerLength =
+        std::snprintf(header, sizeof header, "%s\n%d %d\n-1.0\n", image.channels == 3 ? "PF" : "Pf",
+                      image.width, image.height);
+    std::string out(header, size_t(headerLength));
+    out.reserve(out.size() + image.pixels.size() * 4);
+    const size_t rowValues = size_t(image.width) * size_t(image.channels);
+    // PFM stores the bottom row first.
+    for (int y = image.height - 1; y >= 0; --y) {
+        const float* row = image.pixels.data() + size_t(y) * rowValues;
+        for (size_t i = 0; i < rowValues; ++i) appendLittleEndian(out, row[i]);
+    }
+    return out;
+}
+
+bool isSpace(char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
+
+// Reads the PFM header tokens: "PF"/"Pf", width, height and scale separated by
+// whitespace, then exactly one whitespace character before the pixel data.
+class PfmHeaderReader {
+public:
+    PfmHeaderReader(const std::string& path, const std::string& bytes)
+        : path_(path), bytes_(bytes) {}
+
+    std::string token(const char* what) {
+        const size_t start = pos_;
+        while (pos_ < bytes_.size() && !isSpace(bytes_[pos_])) ++pos_;
+        if (pos_ == start) fail(std::string("missing ") + what);
+        if (pos_ == bytes_.size()) fail(std::string("header ends after the ") + what);
+        std::string text = bytes_.substr(start, pos_ - start);
+        ++pos_;  // the single whitespace character that ends the token
+        return text;
+    }
+
+    void skipSpace() {
+        while (pos_ < bytes_.size() && isSpace(bytes_[pos_])) ++pos_;
+    }
+
+    long side(const char* what) {
+        skipSpace();
+        const std::string text = token(what);
+        long value = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (ec != std::errc() || end != text.data() + text.size())
+            fail(std::string("the ") + what + " '" + text + "' is not a whole number");
+        if (value < 1 || value > kMaxPfmSide)
+            fail(std::string("the ") + what + " " + text + " is outside 1.." +
+                 std::to_string(kMaxPfmSide));
+        return value;
+    }
+
+    double scale() {
+        skipSpace();
+        const std::string text = token("scale");
+        double value = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (ec != std::errc() || end != text.data() + text.size() || value == 0 ||
+            !std::isfinite(value))
+            fail("the scale '" + text + "' is not a non-zero number");
+        return value;
+    }
+
+    size_t position() const { return pos_; }
+
+    [[noreturn]] void fail(const std::string& what) const {
+        throw Error(path_ + ": bad PFM header: " + what);
+    }
+
+private:
+    const std::string& path_;
+    const std::string& bytes_;
+    size_t pos_ = 0;
+};
+
+Image decodePfm(const std::string& path, const std::string& bytes) {
+    PfmHeaderReader header(path, bytes);
+    const std::string magic = header.token("'PF' or 'Pf' magic");
+    if (magic != "PF" && magic != "Pf")
+        header.fail("expected 'PF' (colour) or 'Pf' (grey) at the start, found '" +
+                    magic.substr(0, 16) + "'");
+    Image image;
+    image.channels = magic == "PF" ? 3 : 1;
+    image.width = int(header.side("width"));
+    image.height = int(header.side("height"));
+    // The scale's sign gives the byte order; its magnitude is a brightness hint
+    // that readers conventionally ignore (values are stored as they are).
+    const bool littleEndian = header.scale() < 0;
+    if ((long long)image.width * image.height > kMaxImagePixels)
+        throw Error(tooManyPixels(path, image.width, image.height));
+
+    const size_t count = size_t(image.width) * size_t(image.height) * size_t(image.channels);
+    const size_t expected = count * 4;
+    const size_t found = bytes.size() - header.position();
+    if (found != expected)
+        throw Error(path + ": " + (found < expected ? "truncated PFM" : "PFM has trailing data") +
+                    ": a " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                    (image.channels == 3 ? " colour" : " grey") + " image needs " +
+                    std::to_string(expected) + " bytes of pixel data, the file has " +
+                    std::to_string(found));
+
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data() + header.position());
+    image.pixels.resize(count);
+    const size_t rowValues = size_t(image.width) * size_t(image.channels);
+    for (size_t i = 0; i < count; ++i) {
+        const unsigned char* b = data + i * 4;
+        const std::uint32_t bits = littleEndian
+                                       ? std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 |
+                                             std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24
+                                       : std::uint32_t(b[3]) | std::uint32_t(b[2]) << 8 |
+                                             std::uint32_t(b[1]) << 16 | std::uint32_t(b[0]) << 24;
+        // Stored row r (bottom first) is image row height - 1 - r (top first).
+        const size_t storedRow = i / rowValues, column = i % rowValues;
+        const size_t imageRow = size_t(image.height) - 1 - storedRow;
+        image.pixels[imageRow * rowValues + column] = std::bit_cast<float>(bits);
+    }
+    return image;
+}
+
+// ---- atomic write ------------------------------------------------------------
+
+std::string temporaryPathFor(const std::string& path) {
+    static std::atomic<unsigned> counter{0};
+    return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+}  // namespace
+
+Image colorImage(const Frame& frame) {
+    Image image{frame.width, frame.height, 3, {}};
+    image.pixels.reserve(frame.pixelCount() * 3);
+    for (size_t i = 0; i < frame.pixelCount(); ++i)
+        for (int c = 0; c < 3; ++c) image.pixels.push_back(frame.color.at(i)[c]);
+    return image;
+}
+
+Image depthImage(const Frame& frame) {
+    Image image{frame.width, frame.height, 1, {}};
+    image.pixels.reserve(frame.pixelCount());
+    for (size_t i = 0; i < frame.pixelCount(); ++i) image.pixels.push_back(frame.depth.at(i));
+    return image;
+}
+
+Image normalImage(const Frame& frame) {
+    Image image{frame.width, frame.height, 3, {}};
+    image.pixels.reserve(frame.pixelCount() * 3);
+    for (size_t i = 0; i < frame.pixelCount(); ++i)
+        for (int c = 0; c < 3; ++c) image.pixels.push_back(frame.normal.at(i)[c]);
+    return image;
+}
+
+Image idImage(const Frame& frame) {
+    Image image{frame.width, frame.height, 1, {}};
+    image.pixels.reserve(frame.pixelCount());
+    // Object indices stay exact as floats up to 2^24, far beyond any scene.
+    for (size_t i = 0; i < frame.pixelCount(); ++i) image.pixels.push_back(float(frame.id.at(i)));
+    return image;
+}
+
+void writeImage(const std::string& path, const Image& image) {
+    const Format format = formatOf(path);
+    requireWritable(path, image);
+    writeFileAtomically(path, format == Format::Png ? encodePng(path, image) : encodePfm(image));
+}
+
+Image decodeImage(const std::string& bytes, const std::string& path) {
+    const Format format = formatOf(path);
+    return format == Format::Png ? decodePng(path, bytes) : decodePfm(path, bytes);
+}
+
+Image readImage(const std::string& path) {
+    formatOf(path);  // an unsupported extension is refused before the file is read
+    return decodeImage(readFile(path), path);
+}
+
+void writeFileAtomically(const std::string& path, const std::string& bytes) {
+    const std::string temporary = temporaryPathFor(path);
+    // O_EXCL: never write through a stale temporary or a link someone left there.
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0) throw Error("cannot write " + path + ": " + errnoText(errno));
+
+    auto failAndCleanUp = [&](int error, bool closeFirst) {
+        if (closeFirst) ::close(fd);
+        ::unlink(temporary.c_str());
+        throw Error("cannot write " + path + ": " + errnoText(error));
+    };
+    size_t written = 0;
+    while (written < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) failAndCleanUp(errno, true);
+        written += size_t(n);
+    }
+    // fsync before rename: after a crash the destination is the old or the new
+    // file, never a renamed but still empty one.
+    if (::fsync(fd) != 0) failAndCleanUp(errno, true);
+    if (::close(fd) != 0) failAndCleanUp(errno, false);
+    if (::rename(temporary.c_str(), path.c_str()) != 0) failAndCleanUp(errno, false);
+}
+
+void writeAovs(const std::string& prefix, const Frame& frame) {
+    writeImage(prefix + ".depth.pfm", depthImage(frame));
+    writeImage(prefix + ".normal.pfm", normalImage(frame));
+    writeImage(prefix + ".id.pfm", idImage(frame));
+}
+
+}  // namespace vkray

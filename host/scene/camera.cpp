@@ -1,0 +1,76 @@
+#include "scene/camera.h"
+
+#include "scene/error.h"
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace vkray {
+
+CameraBasis makeCameraBasis(const Camera& camera, int width, int height) {
+    CameraBasis b;
+    b.eye = camera.eye;
+    glm::dvec3 back = camera.eye - camera.look;
+    if (glm::length(back) == 0)
+        throw Error("camera: eye and look point are the same point; move one of them");
+    b.n = glm::normalize(back);
+    glm::dvec3 right = glm::cross(camera.up, b.n);
+    if (glm::length(right) < 1e-12 * glm::length(camera.up) || glm::length(camera.up) == 0)
+        throw Error("camera: the up vector is zero or parallel to the view direction; choose another up");
+    b.u = glm::normalize(right);
+    b.v = glm::cross(b.n, b.u);
+    if (!(camera.fovDegrees > 0 && camera.fovDegrees < 180))
+        throw Error("camera: fov must be between 0 and 180 degrees (exclusive)");
+    b.tanHalfFov = std::tan(glm::radians(camera.fovDegrees) * 0.5);
+    b.aspect = double(width) / double(height);
+    return b;
+}
+
+namespace {
+
+// World bounds of the generic [-1,1]^3 box under an object's transform: a
+// conservative box for every finite generic shape this project knows (sphere,
+// square, cube; tapered cylinders live in [-1,1]^2 x [0,1]).
+void growByObject(const SceneObject& object, glm::dvec3& lo, glm::dvec3& hi) {
+    if (object.type == ShapeType::Plane) return;  // infinite: does not frame
+    for (const SceneObject& operand : object.operands) growByObject(operand, lo, hi);
+    if (!object.operands.empty()) return;
+    for (int corner = 0; corner < 8; ++corner) {
+        glm::dvec4 p((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1, (corner & 4) ? 1 : -1, 1);
+        glm::dvec3 w = glm::dvec3(object.worldFromObject * p);
+        lo = glm::min(lo, w);
+        hi = glm::max(hi, w);
+    }
+}
+
+}  // namespace
+
+Camera autoCamera(const Scene& scene) {
+    const double inf = std::numeric_limits<double>::infinity();
+    glm::dvec3 lo(inf), hi(-inf);
+    for (const SceneObject& object : scene.objects) growByObject(object, lo, hi);
+    Camera camera;
+    glm::dvec3 center(0);
+    double radius = 1;
+    if (lo.x <= hi.x) {
+        center = 0.5 * (lo + hi);
+        radius = std::max(0.5 * glm::length(hi - lo), 1e-9);
+    }
+    const double halfFov = glm::radians(camera.fovDegrees) * 0.5;
+    const double distance = radius / std::sin(halfFov) * 1.05;
+    camera.look = center;
+    camera.eye = center + glm::normalize(glm::dvec3(20, 15, 20)) * distance;
+    return camera;
+}
+
+PixelSample primarySample(int x, int y, int block) {
+    if (block <= 1) return {x + 0.5, y + 0.5};
+    const int x0 = x - x % block, y0 = y - y % block;
+    return {x0 + 0.5 * block, y0 + 0.5 * block};
+}
+
+}  // namespace vkray

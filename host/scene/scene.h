@@ -1,0 +1,104 @@
+// The scene model: everything an SDL file says, in double precision, with the
+// place each object and light was written. Renderers (GPU and CPU reference)
+// read it; nothing in it depends on how it is rendered.
+#pragma once
+
+#include "scene/file_loc.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vkray {
+
+struct TriangleMesh;  // scene/triangle_mesh.h
+
+// Every shape keyword of Hill's SDL (plus the extrude extension), in the
+// order of shapeKeyword().
+enum class ShapeType {
+    Sphere, Plane, Square, Cube, Cylinder, Cone, TaperedCylinder, Torus, Teapot,
+    Tetrahedron, Octahedron, Dodecahedron, Icosahedron, Buckyball, Diamond,
+    Mesh, Extrude, Union, Intersection, Difference,
+};
+inline constexpr int kShapeTypeCount = 20;
+
+const char* shapeKeyword(ShapeType type);
+
+// The generic torus: axis z, centre at the origin, the tube's centre circle
+// of radius kTorusMajorRadius in the plane z = 0, tube radius kTorusTubeRadius
+// (both exact in float; shaders/layout.h repeats them, checked at compile time).
+inline constexpr double kTorusMajorRadius = 1.0;
+inline constexpr double kTorusTubeRadius = 0.25;
+bool isBoolean(ShapeType type);
+
+// Hill's material state, copied into each shape when it is made.
+struct Material {
+    glm::dvec3 ambient{0.1, 0.1, 0.1};
+    glm::dvec3 diffuse{0.8, 0.8, 0.8};
+    glm::dvec3 specular{0, 0, 0};
+    glm::dvec3 emissive{0, 0, 0};
+    double specularExponent = 1;
+    double reflectivity = 0;
+    double transparency = 0;
+    double speedOfLight = 1;
+    double specularFraction = 0;
+    double surfaceRoughness = 0;
+    int texture = 0;                  // `texture n`: 0 = none
+    std::vector<double> textureParameters;  // `parameters n p1 .. pn`
+};
+
+struct SceneObject {
+    ShapeType type = ShapeType::Sphere;
+    FileLoc loc;                        // the shape keyword
+    glm::dmat4 worldFromObject{1.0};    // M: generic object space -> world
+    glm::dmat4 objectFromWorld{1.0};    // M^-1, composed from exact inverses
+    Material material;
+    double taper = 1;                   // taperedCylinder s (cylinder 1, cone 0)
+    std::string file;                   // mesh / extrude: path resolved against the scene's folder
+    int mesh = -1;                      // mesh, extrude, polyhedra, teapot: index into Scene::meshes
+    std::vector<SceneObject> operands;  // union / intersection / difference: exactly two
+};
+
+struct Light {
+    glm::dvec3 position{0, 0, 0};
+    glm::dvec3 color{1, 1, 1};
+    FileLoc loc;
+};
+
+// Camera extension (Hill's grammar has none; his programs set it in code):
+//   camera eye X Y Z look X Y Z up X Y Z fov DEGREES   (each part optional)
+struct Camera {
+    glm::dvec3 eye{20, 15, 20};
+    glm::dvec3 look{0, 0, 0};
+    glm::dvec3 up{0, 1, 0};
+    double fovDegrees = 60;  // vertical view angle
+};
+
+// `makePixmap i file`: an image a texture refers to by index.
+struct Pixmap {
+    int index = 0;
+    std::string file;  // resolved against the scene's folder
+    FileLoc loc;
+};
+
+struct Scene {
+    std::string path;  // the file it was read from ("" for text)
+    glm::dvec3 background{0, 0, 0.6};
+    glm::dvec3 globalAmbient{0.1, 0.1, 0.1};
+    double minReflectivity = 0.5;
+    double minTransparency = 0.5;
+    int maxRecursionDepth = 3;
+    std::vector<Light> lights;
+    std::vector<SceneObject> objects;  // scene order: object id i is objects[i]
+    std::vector<Pixmap> pixmaps;
+    // Filled by loadSceneGeometry (scene/scene_geometry.h): one entry per
+    // distinct mesh file, extruded outline or built-in solid.
+    std::vector<std::shared_ptr<const TriangleMesh>> meshes;
+    std::optional<Camera> camera;      // set by the `camera` extension
+};
+
+}  // namespace vkray

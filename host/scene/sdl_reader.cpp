@@ -1,0 +1,454 @@
+#include "scene/sdl_reader.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+#include <memory>
+#include <optional>
+#include <string_view>
+#include <unordered_map>
+#include <utility>
+
+#include "scene/error.h"
+#include "scene/sdl_lexer.h"
+
+namespace vkray {
+
+namespace {
+
+// Every statement word of Hill's grammar (shapes are looked up separately)
+// plus vkray's `camera`.
+// clang-format off
+enum class Keyword {
+    Light, Background, GlobalAmbient, MinReflectivity, MinTransparency, MaxRecursionDepth,
+    Translate, Rotate, Scale, Push, Pop, IdentityAffine,
+    Ambient, Diffuse, Specular, Emissive, SpecularExponent, Reflectivity, Transparency,
+    SpeedOfLight, SpecularFraction, SurfaceRoughness, Texture, Parameters, DefaultMaterials,
+    MakePixmap, Camera,
+};
+// clang-format on
+
+const std::unordered_map<std::string_view, Keyword>& keywordTable() {
+    static const std::unordered_map<std::string_view, Keyword> table = {
+        {"light", Keyword::Light},
+        {"background", Keyword::Background},
+        {"globalAmbient", Keyword::GlobalAmbient},
+        {"minReflectivity", Keyword::MinReflectivity},
+        {"minTransparency", Keyword::MinTransparency},
+        {"maxRecursionDepth", Keyword::MaxRecursionDepth},
+        {"translate", Keyword::Translate},
+        {"rotate", Keyword::Rotate},
+        {"scale", Keyword::Scale},
+        {"push", Keyword::Push},
+        {"pop", Keyword::Pop},
+        {"identityAffine", Keyword::IdentityAffine},
+        {"ambient", Keyword::Ambient},
+        {"diffuse", Keyword::Diffuse},
+        {"specular", Keyword::Specular},
+        {"emissive", Keyword::Emissive},
+        {"specularExponent", Keyword::SpecularExponent},
+        {"reflectivity", Keyword::Reflectivity},
+        {"transparency", Keyword::Transparency},
+        {"speedOfLight", Keyword::SpeedOfLight},
+        {"specularFraction", Keyword::SpecularFraction},
+        {"surfaceRoughness", Keyword::SurfaceRoughness},
+        {"texture", Keyword::Texture},
+        {"parameters", Keyword::Parameters},
+        {"defaultMaterials", Keyword::DefaultMaterials},
+        {"makePixmap", Keyword::MakePixmap},
+        {"camera", Keyword::Camera},
+    };
+    return table;
+}
+
+std::optional<ShapeType> shapeFor(std::string_view word) {
+    for (int i = 0; i < kShapeTypeCount; ++i) {
+        const auto type = static_cast<ShapeType>(i);
+        if (word == shapeKeyword(type)) return type;
+    }
+    return std::nullopt;
+}
+
+bool isNumberToken(const Token& token) {
+    double ignored = 0;
+    return parseSdlNumber(token.text, ignored) == NumberStatus::Ok;
+}
+
+std::string inQuotes(const std::string& text) {
+    return "'" + text + "'";
+}
+
+// The current transform: M (object -> world) and M^-1 kept beside it, each
+// composed from exact inverses rather than by inverting M.
+struct Transform {
+    glm::dmat4 worldFromObject{1.0};
+    glm::dmat4 objectFromWorld{1.0};
+};
+
+class SdlParser {
+public:
+    SdlParser(std::string_view text, const std::string& fileName, const SdlOptions& options,
+              std::vector<std::string>* warnings)
+        : stream_(tokenizeSdl(text, fileName), options),
+          options_(options),
+          warnings_(warnings),
+          sceneFolder_(std::filesystem::path(fileName).parent_path()) {}
+
+    Scene parse() {
+        while (std::optional<Token> word = stream_.next())
+            if (std::optional<SceneObject> object = parseStatement(*word))
+                deliver(std::move(*object), *word);
+        if (!openBooleans_.empty()) {
+            const Token& word = openBooleans_.back().word;
+            throwAt(word,
+                    inQuotes(word.text) + " needs two objects after it; the file ends before them");
+        }
+        return std::move(scene_);
+    }
+
+private:
+    // One statement starting at `word`; returns the object it made, if any.
+    std::optional<SceneObject> parseStatement(const Token& word);
+    void parseSetting(Keyword keyword, const Token& word);
+    void parseCamera();
+    SceneObject parseShape(ShapeType type, const Token& word);
+    void deliver(SceneObject object, const Token& word);
+    void skipUnknown(const Token& word);
+
+    Token nextArgument(const Token& keyword, const char* what);
+    double readNumber(const Token& keyword, Token* where = nullptr);
+    glm::dvec3 readVec3(const Token& keyword);
+    int readCount(const Token& keyword, const char* what);
+    std::string readFileName(const Token& keyword);
+
+    void applyTransform(const glm::dmat4& forward, const glm::dmat4& inverse) {
+        current_.worldFromObject = current_.worldFromObject * forward;  // M <- M * T
+        current_.objectFromWorld = inverse * current_.objectFromWorld;  // M^-1 <- T^-1 * M^-1
+    }
+
+    SdlTokenStream stream_;
+    SdlOptions options_;
+    std::vector<std::string>* warnings_;
+    std::filesystem::path sceneFolder_;
+    Scene scene_;
+    Material material_;
+    Transform current_;
+    std::vector<Transform> saved_;  // push / pop
+    // Booleans still waiting for their operands, innermost last. Kept here
+    // rather than on the call stack so that `union union union ...` cannot
+    // overflow it.
+    struct OpenBoolean {
+        SceneObject object;
+        Token word;
+    };
+    std::vector<OpenBoolean> openBooleans_;
+};
+
+std::optional<SceneObject> SdlParser::parseStatement(const Token& word) {
+    const auto& table = keywordTable();
+    if (const auto keyword = table.find(word.text); keyword != table.end()) {
+        parseSetting(keyword->second, word);
+        return std::nullopt;
+    }
+    if (const std::optional<ShapeType> type = shapeFor(word.text)) return parseShape(*type, word);
+    if (word.text == "}") throwAt(word, "'}' without a matching '{'");
+    if (word.text == "{") throwAt(word, "'{' outside a def (only 'def NAME { ... }' has braces)");
+    skipUnknown(word);
+    return std::nullopt;
+}
+
+void SdlParser::skipUnknown(const Token& word) {
+    const bool isNumber = isNumberToken(word);
+    if (!options_.lenient) {
+        if (isNumber) throwAt(word, "expected a keyword, found the number " + inQuotes(word.text));
+        throwAt(word, "unknown keyword " + inQuotes(word.text));
+    }
+    // Lenient: real files hold words of other SDL dialects, mostly followed
+    // by their numbers (`exponent 50`); skip both, say so, go on.
+    int skipped = 0;
+    while (const Token* following = stream_.peek()) {
+        if (!isNumberToken(*following)) break;
+        stream_.next();
+        ++skipped;
+    }
+    const std::string what = isNumber ? "unexpected number " : "unknown keyword ";
+    const std::string message = what + inQuotes(word.text) + " skipped (with " +
+                                std::to_string(skipped) + (skipped == 1 ? " number" : " numbers") +
+                                " after it)";
+    if (warnings_) warnings_->push_back(diagnosticAt(word, "warning", message));
+}
+
+void SdlParser::parseSetting(Keyword keyword, const Token& word) {
+    switch (keyword) {
+        case Keyword::Light: {
+            Light light;
+            light.position = readVec3(word);
+            light.color = readVec3(word);
+            light.loc = word.loc;
+            scene_.lights.push_back(light);
+            break;
+        }
+        case Keyword::Background:
+            scene_.background = readVec3(word);
+            break;
+        case Keyword::GlobalAmbient:
+            scene_.globalAmbient = readVec3(word);
+            break;
+        case Keyword::MinReflectivity:
+            scene_.minReflectivity = readNumber(word);
+            break;
+        case Keyword::MinTransparency:
+            scene_.minTransparency = readNumber(word);
+            break;
+        case Keyword::MaxRecursionDepth:
+            scene_.maxRecursionDepth = readCount(word, "a whole number >= 0");
+            break;
+
+        case Keyword::Translate: {
+            const glm::dvec3 d = readVec3(word);
+            applyTransform(glm::translate(glm::dmat4(1.0), d), glm::translate(glm::dmat4(1.0), -d));
+            break;
+        }
+        case Keyword::Rotate: {
+            const double degrees = readNumber(word);
+            const glm::dvec3 axis = readVec3(word);
+            if (axis == glm::dvec3(0.0)) throwAt(word, "rotate axis 0 0 0 has no direction");
+            const glm::dvec3 unitAxis = glm::normalize(axis);
+            const double radians = glm::radians(degrees);
+            applyTransform(glm::rotate(glm::dmat4(1.0), radians, unitAxis),
+                           glm::rotate(glm::dmat4(1.0), -radians, unitAxis));
+            break;
+        }
+        case Keyword::Scale: {
+            const glm::dvec3 s = readVec3(word);
+            if (s.x == 0 || s.y == 0 || s.z == 0)
+                throwAt(word, "scale factor 0 makes the transform singular");
+            applyTransform(glm::scale(glm::dmat4(1.0), s), glm::scale(glm::dmat4(1.0), 1.0 / s));
+            break;
+        }
+        case Keyword::Push:
+            saved_.push_back(current_);
+            break;
+        case Keyword::Pop:
+            if (saved_.empty()) throwAt(word, "'pop' without a matching 'push'");
+            current_ = saved_.back();
+            saved_.pop_back();
+            break;
+        case Keyword::IdentityAffine:
+            current_ = Transform{};
+            break;
+
+        case Keyword::Ambient:
+            material_.ambient = readVec3(word);
+            break;
+        case Keyword::Diffuse:
+            material_.diffuse = readVec3(word);
+            break;
+        case Keyword::Specular:
+            material_.specular = readVec3(word);
+            break;
+        case Keyword::Emissive:
+            material_.emissive = readVec3(word);
+            break;
+        case Keyword::SpecularExponent:
+            material_.specularExponent = readNumber(word);
+            break;
+        case Keyword::Reflectivity:
+            material_.reflectivity = readNumber(word);
+            break;
+        case Keyword::Transparency:
+            material_.transparency = readNumber(word);
+            break;
+        case Keyword::SpeedOfLight:
+            material_.speedOfLight = readNumber(word);
+            break;
+        case Keyword::SpecularFraction:
+            material_.specularFraction = readNumber(word);
+            break;
+        case Keyword::SurfaceRoughness:
+            material_.surfaceRoughness = readNumber(word);
+            break;
+        case Keyword::Texture:
+            material_.texture = readCount(word, "a texture number >= 0");
+            break;
+        case Keyword::Parameters: {
+            const int count = readCount(word, "a parameter count >= 0");
+            std::vector<double> parameters;
+            for (int i = 0; i < count; ++i) parameters.push_back(readNumber(word));
+            material_.textureParameters = std::move(parameters);
+            break;
+        }
+        case Keyword::DefaultMaterials:
+            material_ = Material{};
+            break;
+        case Keyword::MakePixmap: {
+            Pixmap pixmap;
+            pixmap.index = readCount(word, "a pixmap number >= 0");
+            pixmap.file = readFileName(word);
+            pixmap.loc = word.loc;
+            scene_.pixmaps.push_back(std::move(pixmap));
+            break;
+        }
+        case Keyword::Camera:
+            parseCamera();
+            break;
+    }
+}
+
+void SdlParser::parseCamera() {
+    // Parts come in any order, each optional; the statement ends at the first
+    // word that is not a part. A second `camera` changes only what it names.
+    Camera camera = scene_.camera.value_or(Camera{});
+    while (const Token* part = stream_.peek()) {
+        const std::string name = part->text;
+        if (name != "eye" && name != "look" && name != "up" && name != "fov") break;
+        const Token partWord = *stream_.next();
+        if (name == "eye") {
+            camera.eye = readVec3(partWord);
+        } else if (name == "look") {
+            camera.look = readVec3(partWord);
+        } else if (name == "up") {
+            camera.up = readVec3(partWord);
+        } else {
+            Token where;
+            const double fov = readNumber(partWord, &where);
+            if (!(fov > 0 && fov < 180))
+                throwAt(where, "camera fov " + where.text +
+                                   " is outside (0, 180) degrees (the vertical view angle)");
+            camera.fovDegrees = fov;
+        }
+    }
+    scene_.camera = camera;
+}
+
+SceneObject SdlParser::parseShape(ShapeType type, const Token& word) {
+    SceneObject object;
+    object.type = type;
+    object.loc = word.loc;
+    object.worldFromObject = current_.worldFromObject;
+    object.objectFromWorld = current_.objectFromWorld;
+    object.material = material_;
+    switch (type) {
+        case ShapeType::Cone:
+            object.taper = 0;
+            break;
+        case ShapeType::TaperedCylinder:
+            object.taper = readNumber(word);
+            break;
+        case ShapeType::Mesh:
+        case ShapeType::Extrude:
+            object.file = readFileName(word);
+            break;
+        default:
+            break;
+    }
+    return object;
+}
+
+void SdlParser::deliver(SceneObject object, const Token& word) {
+    // A boolean takes the next two objects made, whatever statements come
+    // between them; a finished boolean is itself an object for the one around
+    // it, or for the scene.
+    if (isBoolean(object.type)) {
+        openBooleans_.push_back(OpenBoolean{std::move(object), word});
+        return;
+    }
+    while (!openBooleans_.empty()) {
+        SceneObject& open = openBooleans_.back().object;
+        open.operands.push_back(std::move(object));
+        if (open.operands.size() < 2) return;
+        object = std::move(open);
+        openBooleans_.pop_back();
+    }
+    scene_.objects.push_back(std::move(object));
+}
+
+Token SdlParser::nextArgument(const Token& keyword, const char* what) {
+    std::optional<Token> argument = stream_.next();
+    if (!argument)
+        throwAt(keyword, inQuotes(keyword.text) + " is missing " + what + " (end of file)");
+    return std::move(*argument);
+}
+
+double SdlParser::readNumber(const Token& keyword, Token* where) {
+    const Token argument = nextArgument(keyword, "a number");
+    double value = 0;
+    switch (parseSdlNumber(argument.text, value)) {
+        case NumberStatus::Ok:
+            break;
+        case NumberStatus::Malformed:
+            throwAt(argument, "expected a number after " + inQuotes(keyword.text) + ", found " +
+                                  inQuotes(argument.text));
+        case NumberStatus::NotFinite:
+            throwAt(argument, "expected a finite number after " + inQuotes(keyword.text) +
+                                  ", found " + inQuotes(argument.text));
+        case NumberStatus::OutOfRange:
+            throwAt(argument, "number " + inQuotes(argument.text) + " after " +
+                                  inQuotes(keyword.text) + " is out of range");
+    }
+    if (where) *where = argument;
+    return value;
+}
+
+glm::dvec3 SdlParser::readVec3(const Token& keyword) {
+    const double x = readNumber(keyword);
+    const double y = readNumber(keyword);
+    const double z = readNumber(keyword);
+    return {x, y, z};
+}
+
+int SdlParser::readCount(const Token& keyword, const char* what) {
+    Token where;
+    const double value = readNumber(keyword, &where);
+    if (value < 0 || value != std::floor(value) || value > 2147483647.0)
+        throwAt(where,
+                inQuotes(keyword.text) + " needs " + what + ", found " + inQuotes(where.text));
+    return static_cast<int>(value);
+}
+
+std::string SdlParser::readFileName(const Token& keyword) {
+    const Token name = nextArgument(keyword, "a file name");
+    if (name.text == "{" || name.text == "}")
+        throwAt(name, "expected a file name after " + inQuotes(keyword.text) + ", found " +
+                          inQuotes(name.text));
+    // Relative to the scene file's folder, as the scene's author meant it;
+    // the file itself is read by whoever needs it.
+    return (sceneFolder_ / name.text).string();
+}
+
+}  // namespace
+
+Scene parseSdl(std::string_view text, const std::string& fileName, const SdlOptions& options,
+               std::vector<std::string>* warnings) {
+    return SdlParser(text, fileName, options, warnings).parse();
+}
+
+Scene loadSdlFile(const std::string& path, const SdlOptions& options,
+                  std::vector<std::string>* warnings) {
+    const auto cannotRead = [&path](int error) {
+        return Error(path + ": error: cannot read scene file: " + std::strerror(error));
+    };
+    std::error_code ignored;
+    if (std::filesystem::is_directory(path, ignored)) throw cannotRead(EISDIR);
+
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                         &std::fclose);
+    if (!file) throw cannotRead(errno);
+    std::string text;
+    char buffer[1 << 16];
+    std::size_t count = 0;
+    while ((count = std::fread(buffer, 1, sizeof buffer, file.get())) > 0)
+        text.append(buffer, count);
+    if (std::ferror(file.get())) throw cannotRead(errno ? errno : EIO);
+
+    Scene scene = parseSdl(text, path, options, warnings);
+    scene.path = path;
+    return scene;
+}
+
+}  // namespace vkray

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs the Debian (bookworm) packages vkray needs to build, test and run.
+# Quick when they are already there: apt is only called for what is missing.
+set -euo pipefail
+
+packages=(
+  cmake ninja-build g++ pkg-config
+  libvulkan-dev mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
+  glslang-dev glslang-tools spirv-tools
+  libglm-dev libstb-dev
+  libgtest-dev libbenchmark-dev
+  clang libclang-rt-dev  # scripts/fuzz.sh: clang and its libFuzzer/sanitizer runtimes
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "vkray: installing ${missing[*]}"
+sudo=""
+[ "$(id -u)" -ne 0 ] && sudo="sudo"
+$sudo apt-get update
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"

@@ -1,0 +1,153 @@
+// The one definition of every structure shared by the host (C++) and the
+// compute shader (GLSL). Only vec4/uvec4/uint/float fields, std430 (and std140)
+// compatible without hidden padding; host/gpu/layout_check.cpp static_asserts
+// every size and offset.
+#ifndef VKRAY_LAYOUT_H
+#define VKRAY_LAYOUT_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace vkray::gpu {
+using uint = std::uint32_t;
+struct alignas(16) vec4 { float x, y, z, w; };
+struct alignas(16) uvec4 { uint x, y, z, w; };
+#define VKRAY_CONST(type, name, value) inline constexpr type name = value
+#else
+#define VKRAY_CONST(type, name, value) const type name = value
+#endif
+
+// Generic shapes, each intersected in its own object space (Hill ch. 14).
+VKRAY_CONST(uint, KIND_SPHERE, 0u);            // x^2 + y^2 + z^2 = 1
+VKRAY_CONST(uint, KIND_PLANE, 1u);             // z = 0
+VKRAY_CONST(uint, KIND_SQUARE, 2u);            // z = 0, |x| <= 1, |y| <= 1
+VKRAY_CONST(uint, KIND_CUBE, 3u);              // [-1, 1]^3
+VKRAY_CONST(uint, KIND_TAPERED_CYLINDER, 4u);  // x^2 + y^2 = (1 + (s - 1) z)^2, 0 <= z <= 1, capped
+VKRAY_CONST(uint, KIND_TORUS, 5u);             // axis z, radii TORUS_MAJOR_RADIUS, TORUS_TUBE_RADIUS
+VKRAY_CONST(uint, KIND_MESH, 6u);              // triangles of GpuMesh shape.y
+VKRAY_CONST(uint, KIND_BOOLEAN, 7u);           // CSG tree rooted at GpuCsgNode shape.y
+VKRAY_CONST(uint, KIND_COUNT, 8u);
+
+VKRAY_CONST(float, TORUS_MAJOR_RADIUS, 1.0);
+VKRAY_CONST(float, TORUS_TUBE_RADIUS, 0.25);
+
+// Workgroup shape of trace.comp (also the host's dispatch arithmetic).
+VKRAY_CONST(uint, WORKGROUP_X, 8u);
+VKRAY_CONST(uint, WORKGROUP_Y, 8u);
+
+// Descriptor bindings of trace.comp (set 0).
+VKRAY_CONST(uint, BINDING_FRAME, 0u);    // uniform FrameParams
+VKRAY_CONST(uint, BINDING_OBJECTS, 1u);  // readonly buffer GpuObject[]
+VKRAY_CONST(uint, BINDING_LIGHTS, 2u);   // readonly buffer GpuLight[]
+VKRAY_CONST(uint, BINDING_PIXELS, 3u);   // writeonly buffer GpuPixel[] (one tile)
+VKRAY_CONST(uint, BINDING_DEBUG, 4u);    // debug-pixel variant only: GpuDebugHeader + entries
+VKRAY_CONST(uint, BINDING_OBJECT_NODES, 5u);  // object-BVH variant: GpuBvhNode[] over objects
+VKRAY_CONST(uint, BINDING_OBJECT_INDEX, 6u);  // object-BVH variant: uint[] leaf object indices
+VKRAY_CONST(uint, BINDING_MESHES, 7u);        // mesh variant: GpuMesh[]
+VKRAY_CONST(uint, BINDING_MESH_NODES, 8u);    // mesh variant: GpuBvhNode[] of all meshes
+VKRAY_CONST(uint, BINDING_TRIANGLES, 9u);     // mesh variant: GpuTriangle[] in BVH leaf order
+VKRAY_CONST(uint, BINDING_CSG_NODES, 10u);    // CSG variant: GpuCsgNode[]
+
+// Bounds of the shader's fixed-size stacks; the host refuses scenes beyond them.
+VKRAY_CONST(uint, BVH_STACK_SIZE, 48u);  // BVH depth (kMaxBvhDepth on the host)
+VKRAY_CONST(uint, CSG_MAX_SPANS, 8u);    // inside-spans per CSG list
+VKRAY_CONST(uint, CSG_MAX_STACK, 4u);    // CSG lists alive at once while evaluating a tree
+
+// One object placed in the world. The host computes objectFromWorld = M^-1 in
+// double; the shader only applies it.
+struct GpuObject {
+    vec4 objectFromWorld[3];  // rows of the affine M^-1: p_obj.i = dot(row_i, vec4(p, 1))
+    vec4 ambient;             // rgb; w unused
+    vec4 diffuse;             // rgb; w unused
+    vec4 specular;            // rgb; w = specularExponent
+    vec4 emissive;            // rgb; w unused
+    uvec4 shape;              // x = KIND_*; y = taper (float bits), mesh or CSG root; z, w reserved
+};
+
+// A BVH node (host/scene/bvh.h, flattened): an interior node's first child is
+// the next node, its second child node `first`; a leaf (count > 0) covers
+// entries first .. first + count - 1 (object indices or triangles).
+struct GpuBvhNode {
+    vec4 lo;  // xyz; w = first (uint bits)
+    vec4 hi;  // xyz; w = count (uint bits; 0 = interior)
+};
+
+// One mesh in its object space: its BVH nodes and triangles (node indices
+// and leaf ranges are relative to firstNode and firstTriangle).
+struct GpuMesh {
+    uvec4 range;  // x = firstNode, y = firstTriangle, z = triangle count, w unused
+};
+
+struct GpuTriangle {
+    vec4 p0, p1, p2;  // xyz positions (object space)
+    vec4 n0, n1, n2;  // xyz unit normals at the corners, interpolated
+};
+
+// CSG trees in post order: a leaf pushes its primitive's inside-spans, an
+// operator combines the two lists on top. Primitives are GpuObjects stored
+// after the scene's objects (index >= object count).
+VKRAY_CONST(uint, CSG_LEAF, 0u);
+VKRAY_CONST(uint, CSG_UNION, 1u);
+VKRAY_CONST(uint, CSG_INTERSECTION, 2u);
+VKRAY_CONST(uint, CSG_DIFFERENCE, 3u);
+struct GpuCsgNode {
+    uvec4 node;  // x = CSG_*; y = leaf: primitive object index; z = tree's node count (root only)
+};
+
+struct GpuLight {
+    vec4 position;  // xyz world position; w unused
+    vec4 color;     // rgb; w unused
+};
+
+// Per-frame constants (uniform buffer). The camera basis is built on the host
+// in double: a primary ray through image point (sx, sy) in [-1, 1]^2 is
+// dir = normalize(-n + sx * tanHalfFov * aspect * u + sy * tanHalfFov * v).
+struct FrameParams {
+    vec4 eye;            // xyz eye position; w = tan(verticalFov / 2)
+    vec4 cameraU;        // xyz right; w = aspect (width / height)
+    vec4 cameraV;        // xyz up
+    vec4 cameraN;        // xyz backwards (from look point to eye); w unused
+    vec4 background;     // rgb
+    vec4 globalAmbient;  // rgb
+    uvec4 image;         // x = width, y = height, z = block size, w = object count
+    uvec4 counts;        // x = light count; y = BVH nodes over objects (0: no BVH);
+                         // z, w = first and count of unbounded objects in the object index
+};
+
+// Where the current dispatch writes: the tile's origin and size in pixels
+// (push constant).
+struct TileParams {
+    uvec4 tile;  // x, y = origin; z, w = width, height
+};
+
+// One pixel of the output tile.
+struct GpuPixel {
+    vec4 color;   // rgb radiance (unclamped); w = depth (distance along the unit ray, +inf on a miss)
+    vec4 normal;  // xyz world unit normal facing the ray; w = object id (int bits; -1 = background)
+};
+
+// `vkray pixel` (the VKRAY_DEBUG_PIXEL variant): what the shader saw for the
+// one ray it traces. The debug buffer holds a GpuDebugHeader, then one
+// GpuDebugEntry per object (scene order), then one per light.
+struct GpuDebugHeader {
+    vec4 rayOrigin;     // xyz world
+    vec4 rayDirection;  // xyz world, unit
+    vec4 hitPoint;      // xyz world; w = t (+inf on a miss)
+    vec4 normal;        // xyz world unit normal facing the ray; w = object id (int bits)
+    vec4 emissive;      // rgb: the emissive term
+    vec4 ambient;       // rgb: ambient * globalAmbient
+    vec4 color;         // rgb: the pixel's colour
+    uvec4 counts;       // x = object entries written, y = light entries written
+};
+
+struct GpuDebugEntry {
+    vec4 first;   // object: generic ray origin, w = its nearest t (+inf: miss)
+                  // light: the diffuse term rgb, w = m.s
+    vec4 second;  // object: generic ray direction
+                  // light: the specular term rgb, w = m.h
+};
+
+#ifdef __cplusplus
+}  // namespace vkray::gpu
+#endif
+#undef VKRAY_CONST
+#endif  // VKRAY_LAYOUT_H

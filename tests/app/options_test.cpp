@@ -1,0 +1,74 @@
+#include "app/options.h"
+#include "scene/error.h"
+
+#include <gtest/gtest.h>
+
+namespace vkray {
+namespace {
+
+Options parse(std::vector<std::string> args) { return parseOptions(args); }
+
+std::string errorOf(std::vector<std::string> args) {
+    try {
+        parseOptions(args);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Options, RenderWithEveryFlag) {
+    Options o = parse({"render", "s.sdl", "-o", "x.png", "--size", "320x200", "--device=1",
+                       "--block", "4", "--aov", "out/a", "--lenient", "--eye", "1,2,3",
+                       "--look=0,0,-1.5", "--up", "0,0,1", "--fov", "45", "--threads", "2"});
+    EXPECT_EQ(o.command, Command::Render);
+    EXPECT_EQ(o.scenePath, "s.sdl");
+    EXPECT_EQ(o.outputPath, "x.png");
+    EXPECT_EQ(o.width, 320);
+    EXPECT_EQ(o.height, 200);
+    EXPECT_EQ(o.device, 1);
+    EXPECT_EQ(o.block, 4);
+    EXPECT_EQ(o.aovPrefix, "out/a");
+    EXPECT_TRUE(o.lenient);
+    EXPECT_EQ(*o.eye, glm::dvec3(1, 2, 3));
+    EXPECT_EQ(*o.look, glm::dvec3(0, 0, -1.5));
+    EXPECT_EQ(*o.up, glm::dvec3(0, 0, 1));
+    EXPECT_EQ(*o.fov, 45);
+    EXPECT_EQ(o.threads, 2);
+}
+
+TEST(Options, CheckAndCompareTolerances) {
+    Options check = parse({"render", "s.sdl", "--check", "--diff", "d.png", "--fail", "0.1",
+                           "--failpercent", "2"});
+    EXPECT_TRUE(check.check);
+    EXPECT_EQ(check.diffPath, "d.png");
+    EXPECT_EQ(*check.failThreshold, 0.1);
+    EXPECT_EQ(*check.failPercent, 2);
+    Options compare = parse({"compare", "a.png", "b.pfm", "--ids", "a.id.pfm", "b.id.pfm"});
+    EXPECT_EQ(compare.command, Command::Compare);
+    EXPECT_EQ(compare.imageB, "b.pfm");
+    EXPECT_EQ(compare.idsB, "b.id.pfm");
+}
+
+TEST(Options, BadUsageNamesTheFlag) {
+    EXPECT_NE(errorOf({"render", "s.sdl", "--size", "0x10"}).find("--size"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--size", "100000x100000"}).find("out of range"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--size", "16384x16384"}).find("more than the limit"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--size", "abc"}).find("WIDTHxHEIGHT"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--bogus"}).find("unknown option '--bogus'"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--eye", "1,2"}).find("three numbers"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--block"}).find("expects a value"), std::string::npos);
+    EXPECT_NE(errorOf({"render"}).find("one scene file"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--cpu", "--check"}).find("--check"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--diff", "d.png"}).find("--check"), std::string::npos);
+    EXPECT_NE(errorOf({"compare", "a.png", "--block", "2", "b.png"}).find("unknown option"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"frobnicate"}).find("unknown command"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--fov", "180"}).find("--fov"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vkray

@@ -1,0 +1,142 @@
+// Analytic answers from the real shader for the shapes beyond the four of
+// the foundation: a 1x1 image's only ray goes exactly from the eye through the
+// look point, so a chosen ray can be traced on the GPU.
+#include "support/gpu_fixture.h"
+
+#include "scene/camera.h"
+#include "scene/error.h"
+#include "scene/scene_geometry.h"
+#include "scene/sdl_reader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace vkray {
+namespace {
+
+// The scene from SDL text, with its meshes built; then the ray eye -> look.
+Frame traceOne(const std::string& sdl, glm::dvec3 eye, glm::dvec3 look,
+               glm::dvec3 up = {0, 0, 1}) {
+    Scene scene = parseSdl(sdl, "t.sdl", {});
+    loadSceneGeometry(scene, false, nullptr);
+    Camera camera;
+    camera.eye = eye;
+    camera.look = look;
+    camera.up = up;
+    return test::renderOnGpu(scene, makeCameraBasis(camera, 1, 1), {1, 1, 1});
+}
+
+void expectHit(const Frame& f, int id, double depth, glm::dvec3 normal, double tolerance = 2e-6) {
+    EXPECT_EQ(f.id[0], id);
+    EXPECT_NEAR(f.depth[0], depth, tolerance * std::max(1.0, depth));
+    EXPECT_NEAR(f.normal[0].x, normal.x, 1e-5);
+    EXPECT_NEAR(f.normal[0].y, normal.y, 1e-5);
+    EXPECT_NEAR(f.normal[0].z, normal.z, 1e-5);
+}
+
+TEST(GpuShapes, CylinderWallAndCaps) {
+    // Wall: (3, 0, 0.5) toward -x meets x = 1 at distance 2.
+    expectHit(traceOne("cylinder", {3, 0, 0.5}, {0, 0, 0.5}), 0, 2.0, {1, 0, 0});
+    // Top cap z = 1 from above, bottom cap z = 0 from below.
+    expectHit(traceOne("cylinder", {0.3, 0.2, 4}, {0.3, 0.2, 0}, {0, 1, 0}), 0, 3.0, {0, 0, 1});
+    expectHit(traceOne("cylinder", {0.3, 0.2, -2}, {0.3, 0.2, 0}, {0, 1, 0}), 0, 2.0, {0, 0, -1});
+    // Along the axis (A = B = 0): only the caps.
+    expectHit(traceOne("cylinder", {0, 0, 5}, {0, 0, 0}, {0, 1, 0}), 0, 4.0, {0, 0, 1});
+    // Above z = 1 it misses.
+    EXPECT_EQ(traceOne("cylinder", {3, 0, 1.5}, {0, 0, 1.5}).id[0], -1);
+}
+
+TEST(GpuShapes, ConeAndTaperedCylinderWalls) {
+    // taperedCylinder 0.5 at z = 0.5 has radius 0.75; the wall normal is
+    // (x, y, -k rho) = (0.75, 0, 0.375) with k = -0.5: unit (2, 0, 1)/sqrt(5).
+    expectHit(traceOne("taperedCylinder 0.5", {3, 0, 0.5}, {0, 0, 0.5}), 0, 2.25,
+              glm::dvec3(2, 0, 1) / std::sqrt(5.0));
+    // A cone (s = 0) at z = 0.5 has radius 0.5.
+    expectHit(traceOne("cone", {0, -3, 0.5}, {0, 0, 0.5}), 0, 2.5,
+              glm::dvec3(0, -1, 1) / std::sqrt(2.0));
+    // Straight down at x = 0.9: a cone has no top cap; the wall (radius 1 - z)
+    // is met at z = 0.1.
+    EXPECT_EQ(traceOne("cone", {0.9, 0, 2}, {0.9, 0, 0}, {0, 1, 0}).id[0], 0);
+}
+
+TEST(GpuShapes, TorusAlongTheXAxis) {
+    // (-3, 0, 0) + (1, 0, 0) t crosses the tube at x = -1.25: distance 1.75.
+    expectHit(traceOne("torus", {-3, 0, 0}, {0, 0, 0}), 0, 1.75, {-1, 0, 0}, 1e-5);
+    // Down the z axis, through the hole: a miss.
+    EXPECT_EQ(traceOne("torus", {0, 0, 5}, {0, 0, 0}, {0, 1, 0}).id[0], -1);
+    // From above onto the top of the tube at (1, 0, 0.25): distance 4.75.
+    expectHit(traceOne("torus", {1, 0, 5}, {1, 0, 0}, {0, 1, 0}), 0, 4.75, {0, 0, 1}, 1e-5);
+    // From far away (distance 1000) the root stays accurate.
+    expectHit(traceOne("torus", {-1000, 0, 0}, {0, 0, 0}), 0, 998.75, {-1, 0, 0}, 1e-6);
+}
+
+TEST(GpuShapes, BuiltInCubeLikeMeshesAndTriangles) {
+    // An octahedron with vertices at distance 1 on the axes: along -z from
+    // (0, 0, 5) the apex (0, 0, 1) is hit at distance 4.
+    const Frame f = traceOne("octahedron", {0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+    EXPECT_EQ(f.id[0], 0);
+    EXPECT_NEAR(f.depth[0], 4.0, 1e-5);
+    // Through the centre of the face x + y + z = 1 (at (1/3, 1/3, 1/3)) from far.
+    const glm::dvec3 centre(1.0 / 3, 1.0 / 3, 1.0 / 3);
+    const Frame g = traceOne("octahedron", centre * 10.0, centre, {0, 0, 1});
+    EXPECT_NEAR(g.depth[0], glm::length(centre * 10.0 - centre), 1e-5);
+    EXPECT_NEAR(g.normal[0].x, 1 / std::sqrt(3.0), 1e-5);
+}
+
+TEST(GpuShapes, CsgOfTwoSpheres) {
+    // Spheres at x = 0 and x = 1 (radius 1), ray along -x from x = 5.
+    const std::string spheres = " sphere push translate 1 0 0 sphere pop";
+    expectHit(traceOne("union" + spheres, {5, 0, 0}, {0, 0, 0}), 0, 3.0, {1, 0, 0});
+    // The lens: enters the first sphere's surface at x = 1.
+    expectHit(traceOne("intersection" + spheres, {5, 0, 0}, {0, 0, 0}), 0, 4.0, {1, 0, 0});
+    // Sphere minus sphere: from +x the ray enters the hollow; the first
+    // surface of the result is the second sphere's at x = 0, normal turned to +x.
+    expectHit(traceOne("difference" + spheres, {5, 0, 0}, {0, 0, 0}), 0, 5.0, {1, 0, 0});
+    // From -x the first sphere is entered at x = -1 as usual.
+    expectHit(traceOne("difference" + spheres, {-5, 0, 0}, {0, 0, 0}), 0, 4.0, {-1, 0, 0});
+}
+
+TEST(GpuShapes, CsgSphereCutByAPlane) {
+    // sphere minus the half-space z <= 0: only the upper half remains. From
+    // below along +z the ray passes the removed half and meets the cut face
+    // z = 0 (normal -z, facing the ray) at distance 5.
+    expectHit(traceOne("difference sphere plane", {0, 0, -5}, {0, 0, 0}, {0, 1, 0}), 0, 5.0,
+              {0, 0, -1});
+    expectHit(traceOne("difference sphere plane", {0, 0, 5}, {0, 0, 0}, {0, 1, 0}), 0, 4.0,
+              {0, 0, 1});
+}
+
+TEST(GpuShapes, CsgRefusesASquareOperandWithItsPlace) {
+    Scene scene = parseSdl("union sphere\n  square\n", "t.sdl", {});
+    try {
+        test::renderOnGpu(scene, makeCameraBasis(Camera{}, 4, 4), {4, 4, 1});
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("t.sdl:2:3: error: 'square' has no inside"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(GpuShapes, ObjectBvhFindsTheSameObjectsAsTestingEach) {
+    // 40 spheres in a row (a BVH variant) against the same scene cut to
+    // their first 8 (no BVH): the first 8 must be hit identically.
+    std::string row, firstEight;
+    for (int i = 0; i < 40; ++i) {
+        const std::string sphere = "push translate " + std::to_string(3 * i) + " 0 0 sphere pop\n";
+        row += sphere;
+        if (i < 8) firstEight += sphere;
+    }
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 centre(3 * i, 0, 0);
+        const Frame withBvh = traceOne(row, centre + glm::dvec3(0, 0, 10), centre, {0, 1, 0});
+        const Frame without = traceOne(firstEight, centre + glm::dvec3(0, 0, 10), centre, {0, 1, 0});
+        EXPECT_EQ(withBvh.id[0], i);
+        EXPECT_EQ(without.id[0], i);
+        EXPECT_EQ(withBvh.depth[0], without.depth[0]);
+    }
+}
+
+}  // namespace
+}  // namespace vkray

@@ -1,0 +1,139 @@
+// Analytic answers from the real shader: a 1x1 image's only ray goes exactly
+// from the eye through the look point, so a chosen ray can be traced on the GPU.
+#include "support/gpu_fixture.h"
+
+#include "scene/camera.h"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace vkray {
+namespace {
+
+// Float on the GPU against exact answers: relative error bound for depth.
+constexpr double kDepthTolerance = 2e-6;
+
+SceneObject placed(ShapeType type, const glm::dmat4& worldFromObject) {
+    SceneObject object;
+    object.type = type;
+    object.worldFromObject = worldFromObject;
+    object.objectFromWorld = glm::inverse(worldFromObject);
+    return object;
+}
+
+// Traces the single ray eye -> look in a 1x1 image.
+Frame traceOne(const Scene& scene, glm::dvec3 eye, glm::dvec3 look, glm::dvec3 up = {0, 0, 1}) {
+    Camera camera;
+    camera.eye = eye;
+    camera.look = look;
+    camera.up = up;
+    return test::renderOnGpu(scene, makeCameraBasis(camera, 1, 1), {1, 1, 1});
+}
+
+TEST(GpuTracer, RayMeetsGenericPlaneAtTheAnalyticPoint) {
+    // The ray (4,1,3) + (-3,-5,-3) t meets z = 0 at t = 1, point (1,-4,0). The
+    // GPU traces the unit ray, so its depth is |(-3,-5,-3)| = sqrt(43).
+    Scene scene;
+    scene.objects.push_back(placed(ShapeType::Plane, glm::dmat4(1.0)));
+    Frame f = traceOne(scene, {4, 1, 3}, {1, -4, 0}, {0, 1, 0});
+    EXPECT_EQ(f.id[0], 0);
+    EXPECT_NEAR(f.depth[0], std::sqrt(43.0), kDepthTolerance * std::sqrt(43.0));
+    EXPECT_NEAR(f.normal[0].z, 1.0, 1e-6);  // the ray comes from z > 0
+}
+
+TEST(GpuTracer, TransformedSphereHitAtHandComputedPoint) {
+    // M = T(1,2,3) R_z(90) S(2,1,1): the generic point (-1,0,0) becomes
+    // S -> (-2,0,0), R -> (0,-2,0), T -> (1,0,3). Looking from (1,-10,3) along
+    // +y the first hit is that point, at distance 10, normal (0,-1,0).
+    glm::dmat4 m = glm::translate(glm::dmat4(1.0), {1, 2, 3});
+    m = glm::rotate(m, glm::radians(90.0), {0, 0, 1});
+    m = glm::scale(m, {2, 1, 1});
+    Scene scene;
+    scene.objects.push_back(placed(ShapeType::Sphere, m));
+    Frame f = traceOne(scene, {1, -10, 3}, {1, 0, 3});
+    EXPECT_EQ(f.id[0], 0);
+    EXPECT_NEAR(f.depth[0], 10.0, 10 * kDepthTolerance);
+    EXPECT_NEAR(f.normal[0].y, -1.0, 1e-6);
+}
+
+TEST(GpuTracer, CubeFacesAndNormals) {
+    Scene scene;
+    scene.objects.push_back(placed(ShapeType::Cube, glm::dmat4(1.0)));
+    const glm::dvec3 axes[] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (const glm::dvec3& axis : axes) {
+        for (double sign : {-1.0, 1.0}) {
+            const glm::dvec3 eye = 5.0 * sign * axis;
+            const glm::dvec3 up = axis.y == 0 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+            Frame f = traceOne(scene, eye, {0, 0, 0}, up);
+            EXPECT_NEAR(f.depth[0], 4.0, 4 * kDepthTolerance);
+            EXPECT_NEAR(glm::dot(glm::dvec3(f.normal[0]), sign * axis), 1.0, 1e-6);
+        }
+    }
+}
+
+TEST(GpuTracer, SquareEdgesInsideAndOutside) {
+    Scene scene;
+    scene.objects.push_back(placed(ShapeType::Square, glm::dmat4(1.0)));
+    // Straight down the z axis at x = 0.999 (inside), and x = 1.001 (outside).
+    Frame inside = traceOne(scene, {0.999, 0, 5}, {0.999, 0, 0}, {0, 1, 0});
+    EXPECT_EQ(inside.id[0], 0);
+    EXPECT_NEAR(inside.depth[0], 5.0, 5 * kDepthTolerance);
+    Frame outside = traceOne(scene, {1.001, 0, 5}, {1.001, 0, 0}, {0, 1, 0});
+    EXPECT_EQ(outside.id[0], -1);
+    EXPECT_TRUE(std::isinf(outside.depth[0]));
+}
+
+TEST(GpuTracer, EyeInsideSphereHitsTheFarSideFacingInward) {
+    Scene scene;
+    scene.objects.push_back(placed(ShapeType::Sphere, glm::dmat4(1.0)));
+    Frame f = traceOne(scene, {0, 0, 0}, {0, 0, -1}, {0, 1, 0});
+    EXPECT_NEAR(f.depth[0], 1.0, kDepthTolerance);
+    EXPECT_NEAR(f.normal[0].z, 1.0, 1e-6);  // (0,0,-1) outward, turned to face the ray
+}
+
+TEST(GpuTracer, ClosestOfSeveralObjectsWins) {
+    Scene scene;
+    for (double z : {-4.0, 2.0, -1.0})
+        scene.objects.push_back(placed(ShapeType::Sphere, glm::translate(glm::dmat4(1.0), {0, 0, z})));
+    Frame f = traceOne(scene, {0, 0, 10}, {0, 0, 0}, {0, 1, 0});
+    EXPECT_EQ(f.id[0], 1);
+    EXPECT_NEAR(f.depth[0], 7.0, 7 * kDepthTolerance);
+}
+
+TEST(GpuTracer, BlockFillsEachBlockWithOneRay) {
+    Scene scene = parseSdl("sphere", "block.sdl", {});
+    Camera camera;
+    camera.eye = {0, 0, 4};
+    const RenderSettings settings{37, 29, 4};  // sizes not a multiple of the block
+    Frame f = test::renderOnGpu(scene, makeCameraBasis(camera, 37, 29), settings);
+    for (int y = 0; y < 29; ++y)
+        for (int x = 0; x < 37; ++x) {
+            const size_t first = f.index(x - x % 4, y - y % 4);
+            ASSERT_EQ(f.color[f.index(x, y)], f.color[first]) << x << "," << y;
+            ASSERT_EQ(f.id[f.index(x, y)], f.id[first]);
+        }
+}
+
+TEST(GpuTracer, TilesStitchIntoTheSameImage) {
+    // Small tiles must give exactly the bytes of one big tile.
+    Scene scene = parseSdl("push translate 0.3 0 0 sphere pop cube", "tiles.sdl", {});
+    Camera camera;
+    camera.eye = {3, 4, 5};
+    const RenderSettings settings{50, 40, 1};
+    const CameraBasis basis = makeCameraBasis(camera, 50, 40);
+    gpu::GpuTracer big(test::gpuContext(), {.shaderDirectory = test::kShaderDir, .tileSize = 256});
+    gpu::GpuTracer small(test::gpuContext(), {.shaderDirectory = test::kShaderDir, .tileSize = 16});
+    gpu::GpuRenderStats bigStats, smallStats;
+    Frame a = big.render(scene, basis, settings, &bigStats);
+    Frame b = small.render(scene, basis, settings, &smallStats);
+    EXPECT_EQ(bigStats.tiles, 1u);
+    EXPECT_EQ(smallStats.tiles, 4u * 3u);
+    EXPECT_EQ(a.color, b.color);
+    EXPECT_EQ(a.id, b.id);
+}
+
+}  // namespace
+}  // namespace vkray

@@ -1,0 +1,92 @@
+// `vkray pixel`'s two sides: the GPU's debug-pixel variant and the CPU
+// reference trace the same ray and record the same steps.
+#include "support/gpu_fixture.h"
+
+#include "reference/reference_tracer.h"
+#include "scene/sdl_reader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace vkray {
+namespace {
+
+PixelTrace gpuTrace(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
+                    int x, int y) {
+    gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir});
+    return tracer.tracePixel(scene, camera, settings, x, y);
+}
+
+void expectNear(const glm::dvec3& a, const glm::dvec3& b, double tolerance) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+TEST(PixelTrace, BothSidesRecordTheSameStepsOnAnAnalyticRay) {
+    // Eye (0, 0, 5) looking down -z at a unit sphere moved to (0, 0, -2) and a
+    // plane z = 0 moved to z = -10: the centre ray meets the sphere at t = 6.
+    const Scene scene = parseSdl("camera eye 0 0 5 look 0 0 0 up 0 1 0 fov 60\n"
+                                 "light 0 0 10 1 1 1 light 0 10 0 0.5 0.5 0.5\n"
+                                 "push translate 0 0 -10 plane pop\n"
+                                 "diffuse 0.5 0.25 0.125 emissive 0.1 0 0\n"
+                                 "push translate 0 0 -2 sphere pop\n",
+                                 "t.sdl", {});
+    const RenderSettings settings{5, 5, 1};
+    const CameraBasis camera = makeCameraBasis(*scene.camera, 5, 5);
+    const PixelTrace gpu = gpuTrace(scene, camera, settings, 2, 2);
+    const PixelTrace cpu = reference::tracePixel(scene, camera, settings, 2, 2);
+
+    for (const PixelTrace* trace : {&gpu, &cpu}) {
+        ASSERT_EQ(trace->objects.size(), 2u);
+        ASSERT_EQ(trace->lights.size(), 2u);
+        EXPECT_EQ(trace->hitObject, 1);
+        EXPECT_NEAR(trace->t, 6.0, 1e-6);
+        expectNear(trace->point, {0, 0, -1}, 1e-6);
+        expectNear(trace->normal, {0, 0, 1}, 1e-6);
+        // Each object on its own: the plane at t = 15, the sphere at t = 6.
+        ASSERT_TRUE(trace->objects[0].t && trace->objects[1].t);
+        EXPECT_NEAR(*trace->objects[0].t, 15.0, 1e-5);
+        EXPECT_NEAR(*trace->objects[1].t, 6.0, 1e-6);
+        // The sphere's generic ray starts at (0, 0, 7).
+        expectNear(trace->objects[1].genericOrigin, {0, 0, 7}, 1e-6);
+        expectNear(trace->emissive, {0.1, 0, 0}, 1e-7);
+        // Light 0 straight above the hit: m.s = 1, diffuse = the material's.
+        EXPECT_NEAR(trace->lights[0].mDotS, 1.0, 1e-6);
+        expectNear(trace->lights[0].diffuse, {0.5, 0.25, 0.125}, 1e-6);
+    }
+    expectNear(gpu.color, cpu.color, 1e-5);
+    expectNear(gpu.lights[1].diffuse, cpu.lights[1].diffuse, 1e-5);
+    EXPECT_NEAR(gpu.lights[1].mDotH, cpu.lights[1].mDotH, 1e-5);
+}
+
+TEST(PixelTrace, AMissRecordsTheBackground) {
+    const Scene scene = parseSdl("camera eye 0 0 5 background 0.25 0.5 0.75\n"
+                                 "push translate 100 0 0 sphere pop\n",
+                                 "t.sdl", {});
+    const RenderSettings settings{3, 3, 1};
+    const CameraBasis camera = makeCameraBasis(*scene.camera, 3, 3);
+    for (const PixelTrace& trace : {gpuTrace(scene, camera, settings, 1, 1),
+                                    reference::tracePixel(scene, camera, settings, 1, 1)}) {
+        EXPECT_EQ(trace.hitObject, -1);
+        EXPECT_TRUE(std::isinf(trace.t));
+        ASSERT_EQ(trace.objects.size(), 1u);
+        EXPECT_FALSE(trace.objects[0].t.has_value());
+        expectNear(trace.color, {0.25, 0.5, 0.75}, 1e-7);
+    }
+}
+
+TEST(PixelTrace, BlockPixelsTraceTheirBlocksRay) {
+    const Scene scene = parseSdl("camera eye 0 0 5\nsphere\n", "t.sdl", {});
+    const RenderSettings settings{9, 9, 3};
+    const CameraBasis camera = makeCameraBasis(*scene.camera, 9, 9);
+    // Pixels (3, 3) and (5, 5) share the centre block, whose ray is the centre's.
+    const PixelTrace a = gpuTrace(scene, camera, settings, 3, 3);
+    const PixelTrace b = gpuTrace(scene, camera, settings, 5, 5);
+    expectNear(a.rayDirection, {0, 0, -1}, 1e-7);
+    expectNear(b.rayDirection, a.rayDirection, 0);
+}
+
+}  // namespace
+}  // namespace vkray

@@ -1,0 +1,107 @@
+#include "gpu/shader_compiler.h"
+#include "gpu/spirv_cache.h"
+#include "scene/error.h"
+#include "support/gpu_fixture.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+namespace vkray::gpu {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::uint32_t kSpirvMagic = 0x07230203;
+
+// A fresh shader folder with the given files.
+fs::path shaderFolder(const std::string& name,
+                      const std::vector<std::pair<std::string, std::string>>& files) {
+    fs::path dir = fs::path(::testing::TempDir()) / ("vkray-shaders-" + name);
+    fs::remove_all(dir);
+    for (const auto& [file, text] : files) {
+        fs::create_directories((dir / file).parent_path());
+        std::ofstream(dir / file) << text;
+    }
+    return dir;
+}
+
+const char* kTinyMain =
+    "#version 460\n"
+    "#extension GL_GOOGLE_include_directive : require\n"
+    "#include \"lib/helper.glsl\"\n"
+    "layout(local_size_x = 1) in;\n"
+    "layout(std430, binding = 0) buffer B { float v[]; };\n"
+    "void main() { v[0] = helper(); }\n";
+
+TEST(ShaderCompiler, CompilesTheTracerInEveryShapeVariant) {
+    ShaderSource source{test::kShaderDir, "trace.comp", {}};
+    for (const char* define : {"VKRAY_SHAPE_SPHERE", "VKRAY_SHAPE_PLANE", "VKRAY_SHAPE_SQUARE",
+                               "VKRAY_SHAPE_CUBE"}) {
+        source.defines.emplace_back(define, "1");
+        std::vector<std::uint32_t> spirv = compileComputeShader(source);
+        ASSERT_GT(spirv.size(), 5u);
+        EXPECT_EQ(spirv[0], kSpirvMagic);
+    }
+}
+
+TEST(ShaderCompiler, ErrorInIncludedFileNamesThatFileAndLine) {
+    fs::path dir = shaderFolder("broken", {{"main.comp", kTinyMain},
+                                           {"lib/helper.glsl", "float helper() {\n"
+                                                               "  return undefinedName;\n"
+                                                               "}\n"}});
+    try {
+        compileComputeShader({dir.string(), "main.comp", {}});
+        FAIL() << "a broken shader compiled";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("helper.glsl:2"), std::string::npos) << message;
+        EXPECT_NE(message.find("undefinedName"), std::string::npos) << message;
+    }
+}
+
+TEST(ShaderCompiler, DefinesReachTheShader) {
+    fs::path dir = shaderFolder("defines", {{"main.comp", kTinyMain},
+                                            {"lib/helper.glsl", "float helper() { return VALUE; }\n"}});
+    EXPECT_THROW(compileComputeShader({dir.string(), "main.comp", {}}), Error);
+    EXPECT_NO_THROW(compileComputeShader({dir.string(), "main.comp", {{"VALUE", "2.0"}}}));
+}
+
+TEST(ShaderCompiler, IncludesOutsideTheShaderFolderAreRefused) {
+    fs::path dir = shaderFolder("escape", {{"main.comp", kTinyMain},
+                                           {"lib/helper.glsl", "#include \"../../outside.glsl\"\n"}});
+    std::ofstream(dir.parent_path() / "outside.glsl") << "float helper() { return 1.0; }\n";
+    EXPECT_THROW(compileComputeShader({dir.string(), "main.comp", {}}), Error);
+}
+
+TEST(SpirvCache, KeyFollowsSourcesAndDefinesAndSecondLoadHits) {
+    fs::path dir = shaderFolder("cache", {{"main.comp", kTinyMain},
+                                          {"lib/helper.glsl", "float helper() { return 1.0; }\n"}});
+    fs::path cache = fs::path(::testing::TempDir()) / "vkray-cache-test";
+    fs::remove_all(cache);
+    const char* previous = std::getenv("VKRAY_CACHE_DIR");
+    const std::string saved = previous ? previous : "";
+    ::setenv("VKRAY_CACHE_DIR", cache.c_str(), 1);
+    const ShaderSource source{dir.string(), "main.comp", {}};
+    const std::string key = spirvCacheKey(source);
+    EXPECT_NE(key, spirvCacheKey({dir.string(), "main.comp", {{"X", "1"}}}));
+
+    CompiledShader first = loadOrCompile(source);
+    CompiledShader second = loadOrCompile(source);
+    EXPECT_FALSE(first.cacheHit);
+    EXPECT_TRUE(second.cacheHit);
+    EXPECT_EQ(first.spirv, second.spirv);
+    EXPECT_TRUE(fs::exists(cache / (key + ".spv")));
+
+    // Editing an included file changes the key: no stale SPIR-V.
+    std::ofstream(dir / "lib/helper.glsl") << "float helper() { return 2.0; }\n";
+    EXPECT_NE(spirvCacheKey(source), key);
+    EXPECT_FALSE(loadOrCompile(source).cacheHit);
+    if (previous) ::setenv("VKRAY_CACHE_DIR", saved.c_str(), 1);
+    else ::unsetenv("VKRAY_CACHE_DIR");
+}
+
+}  // namespace
+}  // namespace vkray::gpu

@@ -1,0 +1,70 @@
+#include "scene/camera.h"
+#include "scene/error.h"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace vkray {
+namespace {
+
+TEST(Camera, BasisIsOrthonormalAndLooksAtTheLookPoint) {
+    Camera camera;  // Hill's eye (20,15,20) toward the origin, up +y, 60 degrees
+    CameraBasis b = makeCameraBasis(camera, 640, 480);
+    EXPECT_NEAR(glm::length(b.u), 1, 1e-15);
+    EXPECT_NEAR(glm::length(b.v), 1, 1e-15);
+    EXPECT_NEAR(glm::dot(b.u, b.v), 0, 1e-15);
+    EXPECT_NEAR(glm::dot(b.u, b.n), 0, 1e-15);
+    const glm::dvec3 toLook = glm::normalize(camera.look - camera.eye);
+    EXPECT_NEAR(glm::dot(-b.n, toLook), 1, 1e-15);
+    EXPECT_GT(b.v.y, 0);  // up stays up
+    EXPECT_NEAR(b.tanHalfFov, std::tan(M_PI / 6), 1e-15);
+    EXPECT_DOUBLE_EQ(b.aspect, 640.0 / 480.0);
+}
+
+TEST(Camera, DegenerateCamerasAreErrors) {
+    Camera same;
+    same.look = same.eye;
+    EXPECT_THROW(makeCameraBasis(same, 10, 10), Error);
+    Camera parallel;
+    parallel.eye = {0, 10, 0};
+    parallel.look = {0, 0, 0};
+    parallel.up = {0, 1, 0};
+    EXPECT_THROW(makeCameraBasis(parallel, 10, 10), Error);
+    Camera wide;
+    wide.fovDegrees = 180;
+    EXPECT_THROW(makeCameraBasis(wide, 10, 10), Error);
+}
+
+TEST(Camera, PrimarySampleIsPixelCentreOrBlockCentre) {
+    EXPECT_EQ(primarySample(3, 7, 1).px, 3.5);
+    EXPECT_EQ(primarySample(3, 7, 1).py, 7.5);
+    // Pixel (5, 6) with block 4 lies in the block starting at (4, 4): centre (6, 6).
+    EXPECT_EQ(primarySample(5, 6, 4).px, 6.0);
+    EXPECT_EQ(primarySample(5, 6, 4).py, 6.0);
+}
+
+TEST(Camera, AutoCameraFramesTheFiniteObjects) {
+    Scene scene;
+    SceneObject sphere;
+    sphere.worldFromObject = glm::translate(glm::dmat4(1.0), {10, 0, 0});
+    sphere.objectFromWorld = glm::inverse(sphere.worldFromObject);
+    scene.objects.push_back(sphere);
+    SceneObject plane;  // infinite: must not move the framing
+    plane.type = ShapeType::Plane;
+    scene.objects.push_back(plane);
+    Camera camera = autoCamera(scene);
+    EXPECT_EQ(camera.look, glm::dvec3(10, 0, 0));
+    // Looking from Hill's direction (20,15,20).
+    const glm::dvec3 dir = glm::normalize(camera.eye - camera.look);
+    EXPECT_NEAR(glm::dot(dir, glm::normalize(glm::dvec3(20, 15, 20))), 1, 1e-12);
+    // The bounding sphere of the object's box (radius sqrt 3) fits in the 60 degree view.
+    const double distance = glm::length(camera.eye - camera.look);
+    EXPECT_GE(std::asin(std::sqrt(3.0) / distance), 0);
+    EXPECT_LE(std::asin(std::sqrt(3.0) / distance), M_PI / 6);
+}
+
+}  // namespace
+}  // namespace vkray
