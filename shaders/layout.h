@@ -46,11 +46,27 @@ VKRAY_CONST(uint, BINDING_MESHES, 7u);        // mesh variant: GpuMesh[]
 VKRAY_CONST(uint, BINDING_MESH_NODES, 8u);    // mesh variant: GpuBvhNode[] of all meshes
 VKRAY_CONST(uint, BINDING_TRIANGLES, 9u);     // mesh variant: GpuTriangle[] in BVH leaf order
 VKRAY_CONST(uint, BINDING_CSG_NODES, 10u);    // CSG variant: GpuCsgNode[]
+VKRAY_CONST(uint, BINDING_PIXMAPS, 11u);      // pixmap variant: GpuPixmap[] (slot order)
+VKRAY_CONST(uint, BINDING_TEXELS, 12u);       // pixmap variant: float[] rgb texels of all pixmaps
 
 // Bounds of the shader's fixed-size stacks; the host refuses scenes beyond them.
 VKRAY_CONST(uint, BVH_STACK_SIZE, 48u);  // BVH depth (kMaxBvhDepth on the host)
 VKRAY_CONST(uint, CSG_MAX_SPANS, 8u);    // inside-spans per CSG list
 VKRAY_CONST(uint, CSG_MAX_STACK, 4u);    // CSG lists alive at once while evaluating a tree
+VKRAY_CONST(uint, MAX_RECURSION_DEPTH, 8u);  // maxRecursionDepth (kMaxRecursionDepth on the host)
+VKRAY_CONST(uint, MEDIUM_STACK_SIZE, 4u);    // nested transparent objects a ray remembers
+
+// GpuObject.shape.z: the secondary rays a hit on the surface spawns, decided
+// on the host in double (reflectivity > minReflectivity, transparency >
+// minTransparency) so that GPU and CPU never disagree on a borderline value.
+VKRAY_CONST(uint, FOLLOW_REFLECTION, 1u);
+VKRAY_CONST(uint, FOLLOW_REFRACTION, 2u);
+
+// Texture codes (`texture n`; SHADING_SPEC.md / README "Textures").
+VKRAY_CONST(uint, TEXTURE_NONE, 0u);
+VKRAY_CONST(uint, TEXTURE_CHECKERBOARD, 1u);  // parameters: size, r g b
+VKRAY_CONST(uint, TEXTURE_WOOD, 2u);          // parameters: ring width, r g b
+VKRAY_CONST(uint, TEXTURE_IMAGE, 3u);         // parameters: pixmap index
 
 // One object placed in the world. The host computes objectFromWorld = M^-1 in
 // double; the shader only applies it.
@@ -60,7 +76,14 @@ struct GpuObject {
     vec4 diffuse;             // rgb; w unused
     vec4 specular;            // rgb; w = specularExponent
     vec4 emissive;            // rgb; w unused
-    uvec4 shape;              // x = KIND_*; y = taper (float bits), mesh or CSG root; z, w reserved
+    uvec4 shape;              // x = KIND_*; y = taper (float bits), mesh or CSG root;
+                              // z = FOLLOW_* flags; w reserved
+    vec4 material;            // x = reflectivity, y = transparency, z = speedOfLight,
+                              // w = TEXTURE_* (uint bits)
+    vec4 texture;             // the texture's parameters, defaults filled in:
+                              // checkerboard: x = cell size, yzw = odd cells' rgb;
+                              // wood: x = ring width, yzw = odd rings' rgb;
+                              // image: x = GpuPixmap slot (uint bits)
 };
 
 // A BVH node (host/scene/bvh.h, flattened): an interior node's first child is
@@ -93,6 +116,12 @@ struct GpuCsgNode {
     uvec4 node;  // x = CSG_*; y = leaf: primitive object index; z = tree's node count (root only)
 };
 
+// One decoded `makePixmap` image: its rgb texels, row 0 at the top, start at
+// float `first` of the texel buffer (3 floats a texel, row-major).
+struct GpuPixmap {
+    uvec4 image;  // x = first, y = width, z = height, w unused
+};
+
 struct GpuLight {
     vec4 position;  // xyz world position; w unused
     vec4 color;     // rgb; w unused
@@ -111,6 +140,7 @@ struct FrameParams {
     uvec4 image;         // x = width, y = height, z = block size, w = object count
     uvec4 counts;        // x = light count; y = BVH nodes over objects (0: no BVH);
                          // z, w = first and count of unbounded objects in the object index
+    uvec4 sampling;      // x = samples per pixel, y = seed, z = maxRecursionDepth; w unused
 };
 
 // Where the current dispatch writes: the tile's origin and size in pixels

@@ -1,17 +1,22 @@
-// vkray's ray tracer, one compute invocation per primary ray (Hill ch. 14):
-// build the ray S + c t, intersect every object in its generic space, keep
-// the closest hit, and shade it with Hill's local model.
+// vkray's ray tracer, one compute invocation per pixel (or block; Hill ch.
+// 14): build the ray S + c t, intersect every object in its generic space,
+// keep the closest hit, and shade it as Hill's shade() does (shade.glsl).
 //
 // The host compiles a variant holding only what the scene uses (host/gpu/
 // shader_variant.h): VKRAY_SHAPE_SPHERE, _PLANE, _SQUARE, _CUBE,
 // _TAPERED_CYLINDER, _TORUS, _MESH and VKRAY_CSG are 1 for the shapes
-// present; VKRAY_OBJECT_BVH finds objects through a BVH instead of testing
-// each; VKRAY_DEBUG_PIXEL (for `vkray pixel`) also records every step of the
-// one ray the host dispatches into the debug buffer.
+// present; VKRAY_SHADOWS, _REFLECTION, _REFRACTION, _TEXTURES, _PIXMAPS and
+// _ANTIALIAS add the parts of Whitted shading the scene uses;
+// VKRAY_OBJECT_BVH finds objects through a BVH instead of testing each;
+// VKRAY_DEBUG_PIXEL (for `vkray pixel`) also records every step of the one
+// ray the host dispatches into the debug buffer.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
 #include "layout.h"
+#if VKRAY_ANTIALIAS
+#include "sampling.h"
+#endif
 
 layout(local_size_x = WORKGROUP_X, local_size_y = WORKGROUP_Y, local_size_z = 1) in;
 
@@ -72,47 +77,57 @@ struct Hit {
     float t;
     int object;          // the scene object (its id), -1 for none
     uint surface;        // the GpuObject whose surface was hit (a CSG primitive, or the object)
-    vec3 genericNormal;  // in the generic space of `surface`
+    vec3 genericNormal;  // outward, in the generic space of `surface`
+    vec3 geometricNormal;  // the same, but a mesh's triangle's own instead of the interpolated
 };
 
 // The nearest hit of object `index` in (0, tMax); for a CSG object, the
-// primitive whose surface it is.
+// primitive whose surface it is. `geometric` differs from n only on meshes.
 bool intersectObject(uint index, vec3 origin, vec3 direction, float tMax, out float t,
-                     out vec3 n, out uint surface) {
+                     out vec3 n, out vec3 geometric, out uint surface) {
     const float tMin = 0.0;
     surface = index;
     GpuObject object = objects[index];
 #if VKRAY_CSG
-    if (object.shape.x == KIND_BOOLEAN)
-        return intersectCsg(object.shape.y, origin, direction, tMin, tMax, t, n, surface);
+    if (object.shape.x == KIND_BOOLEAN) {
+        // Meshes in CSG are convex (the host checks): their spans carry the
+        // interpolated normal only.
+        bool hit = intersectCsg(object.shape.y, origin, direction, tMin, tMax, t, n, surface);
+        geometric = n;
+        return hit;
+    }
 #endif
     vec3 o, d;
     toObjectSpace(index, origin, direction, o, d);
+#if VKRAY_SHAPE_MESH
+    if (object.shape.x == KIND_MESH)
+        return intersectMesh(object.shape.y, o, d, tMin, tMax, t, n, geometric);
+#endif
+    bool hit = false;
     switch (object.shape.x) {
 #if VKRAY_SHAPE_SPHERE
-    case KIND_SPHERE: return intersectSphere(o, d, tMin, tMax, t, n);
+    case KIND_SPHERE: hit = intersectSphere(o, d, tMin, tMax, t, n); break;
 #endif
 #if VKRAY_SHAPE_PLANE
-    case KIND_PLANE: return intersectPlane(o, d, tMin, tMax, t, n);
+    case KIND_PLANE: hit = intersectPlane(o, d, tMin, tMax, t, n); break;
 #endif
 #if VKRAY_SHAPE_SQUARE
-    case KIND_SQUARE: return intersectSquare(o, d, tMin, tMax, t, n);
+    case KIND_SQUARE: hit = intersectSquare(o, d, tMin, tMax, t, n); break;
 #endif
 #if VKRAY_SHAPE_CUBE
-    case KIND_CUBE: return intersectCube(o, d, tMin, tMax, t, n);
+    case KIND_CUBE: hit = intersectCube(o, d, tMin, tMax, t, n); break;
 #endif
 #if VKRAY_SHAPE_TAPERED_CYLINDER
     case KIND_TAPERED_CYLINDER:
-        return intersectTaperedCylinder(o, d, uintBitsToFloat(object.shape.y), tMin, tMax, t, n);
+        hit = intersectTaperedCylinder(o, d, uintBitsToFloat(object.shape.y), tMin, tMax, t, n); break;
 #endif
 #if VKRAY_SHAPE_TORUS
-    case KIND_TORUS: return intersectTorus(o, d, tMin, tMax, t, n);
+    case KIND_TORUS: hit = intersectTorus(o, d, tMin, tMax, t, n); break;
 #endif
-#if VKRAY_SHAPE_MESH
-    case KIND_MESH: return intersectMesh(object.shape.y, o, d, tMin, tMax, t, n);
-#endif
-    default: return false;
+    default: break;
     }
+    geometric = n;
+    return hit;
 }
 
 // Surfaces that coincide (stacked cubes, a def used twice) are hit at the same
@@ -123,9 +138,10 @@ const float TIE_TOLERANCE = 1e-6;
 
 void testObject(uint index, vec3 origin, vec3 direction, inout Hit hit) {
     float t;
-    vec3 n;
+    vec3 n, geometric;
     uint surface;
-    if (!intersectObject(index, origin, direction, hit.t * (1.0 + TIE_TOLERANCE), t, n, surface))
+    if (!intersectObject(index, origin, direction, hit.t * (1.0 + TIE_TOLERANCE), t, n, geometric,
+                         surface))
         return;
     bool nearer = t < hit.t * (1.0 - TIE_TOLERANCE);
     bool tieWon = hit.object < 0 || int(index) < hit.object;
@@ -134,6 +150,7 @@ void testObject(uint index, vec3 origin, vec3 direction, inout Hit hit) {
         hit.object = int(index);
         hit.surface = surface;
         hit.genericNormal = n;
+        hit.geometricNormal = geometric;
     }
 }
 
@@ -149,6 +166,7 @@ Hit closestHit(vec3 origin, vec3 direction) {
     hit.object = -1;
     hit.surface = 0u;
     hit.genericNormal = vec3(0.0);
+    hit.geometricNormal = vec3(0.0);
 #if VKRAY_OBJECT_BVH
     // Unbounded objects (planes) first, then the BVH over the rest.
     for (uint i = frame.counts.z; i < frame.counts.z + frame.counts.w; ++i)
@@ -194,53 +212,35 @@ Hit closestHit(vec3 origin, vec3 direction) {
     return hit;
 }
 
-// World normal = (M^-1)^T n_generic, normalised, turned to face the ray.
-vec3 worldNormal(uint index, vec3 genericNormal, vec3 direction) {
-    GpuObject object = objects[index];
-    vec3 n = normalize(genericNormal.x * object.objectFromWorld[0].xyz +
-                       genericNormal.y * object.objectFromWorld[1].xyz +
-                       genericNormal.z * object.objectFromWorld[2].xyz);
-    return dot(n, direction) > 0.0 ? -n : n;
-}
-
-// Hill's local model: emissive + ambient * globalAmbient + for each light
-// (diffuse max(0, m.s) + specular max(0, m.h)^exponent) * light colour.
-vec3 shade(uint index, vec3 p, vec3 m, vec3 v) {
-    GpuObject object = objects[index];
-    vec3 color = object.emissive.rgb + object.ambient.rgb * frame.globalAmbient.rgb;
-    for (uint i = 0u; i < frame.counts.x; ++i) {
-        vec3 s = normalize(lights[i].position.xyz - p);
-        float mDotS = dot(m, s);
-        vec3 diffuse = mDotS > 0.0 ? mDotS * object.diffuse.rgb * lights[i].color.rgb : vec3(0.0);
-        vec3 h = normalize(v + s);
-        float mDotH = dot(m, h);
-        vec3 specular = mDotH > 0.0
-            ? pow(mDotH, object.specular.w) * object.specular.rgb * lights[i].color.rgb
-            : vec3(0.0);
-        color += diffuse + specular;
-#if VKRAY_DEBUG_PIXEL
-        debugEntries[frame.image.w + i] = GpuDebugEntry(vec4(diffuse, mDotS), vec4(specular, mDotH));
-#endif
-    }
-    return color;
-}
+#include "shade.glsl"
 
 #if VKRAY_DEBUG_PIXEL
 // Every object on its own, for `vkray pixel`: its generic ray and nearest t.
 void recordObjectTests(vec3 origin, vec3 direction) {
     for (uint i = 0u; i < frame.image.w; ++i) {
-        vec3 o, d, n;
+        vec3 o, d, n, geometric;
         toObjectSpace(i, origin, direction, o, d);
         float t;
         uint surface;
-        if (!intersectObject(i, origin, direction, INFINITY, t, n, surface)) t = INFINITY;
+        if (!intersectObject(i, origin, direction, INFINITY, t, n, geometric, surface)) t = INFINITY;
         debugEntries[i] = GpuDebugEntry(vec4(o, t), vec4(d, 0.0));
     }
 }
 #endif
 
+// The unit direction of the primary ray through image point (x right, y
+// down, in pixels).
+vec3 primaryDirection(vec2 imagePoint) {
+    vec2 screen = vec2(2.0 * imagePoint.x / float(frame.image.x) - 1.0,
+                       1.0 - 2.0 * imagePoint.y / float(frame.image.y));
+    float tanHalfFov = frame.eye.w;
+    float aspect = frame.cameraU.w;
+    return normalize(-frame.cameraN.xyz + screen.x * tanHalfFov * aspect * frame.cameraU.xyz +
+                     screen.y * tanHalfFov * frame.cameraV.xyz);
+}
+
 void main() {
-    // This invocation's ray: one per pixel, or one per block x block pixels.
+    // This invocation's pixel: one per pixel, or one per block x block pixels.
     uint block = frame.image.z;
     uvec2 rayInTile = gl_GlobalInvocationID.xy;
     uvec2 tileOrigin = tileParams.tile.xy;
@@ -248,29 +248,47 @@ void main() {
     uvec2 first = rayInTile * block;  // first pixel of the block, tile-relative
     if (first.x >= tileSize.x || first.y >= tileSize.y) return;
     uvec2 pixel = tileOrigin + first;
-
-    vec2 imagePoint = vec2(pixel) + 0.5 * float(block);
-    vec2 screen = vec2(2.0 * imagePoint.x / float(frame.image.x) - 1.0,
-                       1.0 - 2.0 * imagePoint.y / float(frame.image.y));
-    float tanHalfFov = frame.eye.w;
-    float aspect = frame.cameraU.w;
-    vec3 direction = normalize(-frame.cameraN.xyz +
-                               screen.x * tanHalfFov * aspect * frame.cameraU.xyz +
-                               screen.y * tanHalfFov * frame.cameraV.xyz);
     vec3 origin = frame.eye.xyz;
 
+    // Its samples: the centre, or (VKRAY_ANTIALIAS) N jittered in a grid of
+    // cells (sampling.h, shared with the CPU reference); the colour is their
+    // mean, the AOVs are those of sample 0.
+#if VKRAY_ANTIALIAS
+    uint samples = frame.sampling.x;
+    uint pixelIndex = pixel.y * frame.image.x + pixel.x;
+#else
+    const uint samples = 1u;
+#endif
     GpuPixel result;
-    Hit hit = closestHit(origin, direction);
-    vec3 p = vec3(0.0);
-    if (hit.object < 0) {
-        result.color = vec4(frame.background.rgb, INFINITY);
-        result.normal = vec4(0.0, 0.0, 0.0, intBitsToFloat(-1));
-    } else {
-        p = origin + hit.t * direction;
-        vec3 m = worldNormal(hit.surface, hit.genericNormal, direction);
-        result.color = vec4(shade(hit.surface, p, m, -direction), hit.t);
-        result.normal = vec4(m, intBitsToFloat(hit.object));
+    vec3 sum = vec3(0.0);
+    vec3 direction, p;
+    Hit hit;
+    for (uint k = 0u; k < samples; ++k) {
+        vec2 offset = vec2(0.5);
+#if VKRAY_ANTIALIAS
+        if (samples > 1u)
+            offset = vec2(sampleOffsetX(frame.sampling.y, pixelIndex, k, samples),
+                          sampleOffsetY(frame.sampling.y, pixelIndex, k, samples));
+#endif
+        vec3 sampleDirection = primaryDirection(vec2(pixel) + offset * float(block));
+        Hit sampleHit;
+        vec3 m;
+        sum += radiance(origin, sampleDirection, sampleHit, m);
+        if (k == 0u) {
+            direction = sampleDirection;
+            hit = sampleHit;
+            if (hit.object < 0) {
+                p = vec3(0.0);
+                result.color.w = INFINITY;
+                result.normal = vec4(0.0, 0.0, 0.0, intBitsToFloat(-1));
+            } else {
+                p = origin + hit.t * direction;
+                result.color.w = hit.t;
+                result.normal = vec4(m, intBitsToFloat(hit.object));
+            }
+        }
     }
+    result.color.rgb = sum / float(samples);
 #if VKRAY_DEBUG_PIXEL
     recordObjectTests(origin, direction);
     GpuObject object = objects[hit.surface];
@@ -280,8 +298,8 @@ void main() {
     debugHeader.hitPoint = vec4(p, hit.t);
     debugHeader.normal = result.normal;
     debugHeader.emissive = vec4(hitSomething ? object.emissive.rgb : vec3(0.0), 0.0);
-    debugHeader.ambient =
-        vec4(hitSomething ? object.ambient.rgb * frame.globalAmbient.rgb : vec3(0.0), 0.0);
+    debugHeader.ambient = vec4(
+        hitSomething ? debugTexture * object.ambient.rgb * frame.globalAmbient.rgb : vec3(0.0), 0.0);
     debugHeader.color = vec4(result.color.rgb, 0.0);
     debugHeader.counts = uvec4(frame.image.w, hitSomething ? frame.counts.x : 0u, 0u, 0u);
 #endif

@@ -85,7 +85,8 @@ double mrays(std::size_t rays, double seconds) {
 }
 
 std::size_t primaryRays(const RenderSettings& s) {
-    return std::size_t((s.width + s.block - 1) / s.block) * std::size_t((s.height + s.block - 1) / s.block);
+    return std::size_t((s.width + s.block - 1) / s.block) *
+           std::size_t((s.height + s.block - 1) / s.block) * std::size_t(s.spp);
 }
 
 // The GPU side of a render session: one Vulkan context and tracer, kept
@@ -179,11 +180,14 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
     if (!o.dumpSpirvDirectory.empty())
         requireWritableFolder((fs::path(o.dumpSpirvDirectory) / "x").string(), "--dump-spirv");
 
-    const RenderSettings settings{o.width, o.height, o.block};
+    const RenderSettings settings{o.width, o.height, o.block, o.spp, o.seed};
     const CameraBasis camera = makeCameraBasis(chooseCamera(scene, o), o.width, o.height);
     out << "scene: " << o.scenePath << " (" << scene.objects.size() << " objects, "
         << scene.lights.size() << " lights), " << o.width << "x" << o.height
-        << (o.block > 1 ? ", block " + std::to_string(o.block) : std::string()) << "\n";
+        << (o.block > 1 ? ", block " + std::to_string(o.block) : std::string())
+        << (o.spp > 1 ? ", " + std::to_string(o.spp) + " spp, seed " + std::to_string(o.seed)
+                      : std::string())
+        << "\n";
 
     Frame frame = o.cpu ? renderCpu(scene, camera, settings, o, out)
                         : renderGpu(scene, camera, settings, o, session, out);

@@ -1,5 +1,6 @@
 #include "app/options.h"
 
+#include "scene/camera.h"
 #include "scene/error.h"
 
 #include <charconv>
@@ -30,6 +31,15 @@ int parseInt(const std::string& flag, const std::string& text, int lo, int hi) {
         throw Error(flag + ": " + text + " is out of range (" + std::to_string(lo) + " .. " +
                     std::to_string(hi) + ")");
     return int(value);
+}
+
+// --seed: any 32-bit unsigned value.
+std::uint32_t parseSeed(const std::string& text) {
+    unsigned long long value = 0;
+    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec != std::errc() || end != text.data() + text.size() || value > 0xffffffffull)
+        throw Error("--seed: '" + text + "' is not a whole number from 0 to 4294967295");
+    return std::uint32_t(value);
 }
 
 glm::dvec3 parseVector(const std::string& flag, const std::string& text) {
@@ -69,6 +79,8 @@ const std::map<std::string, Flag>& renderFlags() {
         {"--size", {true, [](Options& o, const std::string& v) { parseSize(v, o); }}},
         {"--device", {true, [](Options& o, const std::string& v) { o.device = parseInt("--device", v, 0, 1023); }}},
         {"--block", {true, [](Options& o, const std::string& v) { o.block = parseInt("--block", v, 1, 1024); }}},
+        {"--spp", {true, [](Options& o, const std::string& v) { o.spp = parseInt("--spp", v, 1, kMaxSpp); }}},
+        {"--seed", {true, [](Options& o, const std::string& v) { o.seed = parseSeed(v); }}},
         {"--aov", {true, [](Options& o, const std::string& v) { o.aovPrefix = v; }}},
         {"--cpu", {false, [](Options& o, const std::string&) { o.cpu = true; }}},
         {"--check", {false, [](Options& o, const std::string&) { o.check = true; }}},
@@ -128,7 +140,7 @@ bool accepts(Command command, const std::string& flag) {
         return flag != "-o" && flag != "--output" && flag != "--aov" && flag != "--cpu" &&
                flag != "--check" && flag != "--diff" && flag != "--fail" &&
                flag != "--failpercent" && flag != "--watch" && flag != "--threads" &&
-               flag != "--all";
+               flag != "--all" && flag != "--spp" && flag != "--seed";
     case Command::Compare: return flag == "--diff" || flag == "--fail" || flag == "--failpercent";
     case Command::ShadersCheck: return flag == "--shader-dir" || flag == "--all";
     default: return false;
@@ -155,6 +167,8 @@ render options:
   --size WxH            image size (default 640x480; each side <= 16384)
   --device N            Vulkan device index (see `vkray devices`)
   --block N             one ray per NxN block, the block filled with its colour
+  --spp N               samples per pixel (1..4096, default 1): stratified, jittered
+  --seed S              seed of the sample positions (0..4294967295, default 0)
   --aov PREFIX          also write PREFIX.depth.pfm, PREFIX.normal.pfm, PREFIX.id.pfm
   --cpu                 render with the CPU reference instead of the GPU
   --check               render with both and compare (exit 2 beyond tolerance)

@@ -5,6 +5,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -29,6 +30,8 @@ struct Options {
     int height = 480;
     int device = -1;         // --device N; -1 = automatic choice
     int block = 1;
+    int spp = 1;              // --spp N: samples per pixel (anti-aliasing)
+    std::uint32_t seed = 0;   // --seed S: the sample positions' seed
     std::string aovPrefix;
     bool cpu = false;
     bool check = false;

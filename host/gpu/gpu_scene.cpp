@@ -1,6 +1,8 @@
 #include "gpu/gpu_scene.h"
 
+#include "image/image_io.h"
 #include "scene/error.h"
+#include "scene/pixmaps.h"
 #include "scene/scene_geometry.h"
 #include "scene/triangle_mesh.h"
 
@@ -27,7 +29,30 @@ uint floatBits(float f) {
     return bits;
 }
 
-GpuObject packObject(const SceneObject& object) {
+// The texture's parameters with the defaults of README "Textures" for
+// those the scene leaves out; an image texture's pixmap as its slot in
+// Scene::pixmaps (loadPixmaps has checked that it exists).
+vec4 packTexture(const Scene& scene, const Material& m) {
+    const auto parameter = [&](size_t i, double fallback) {
+        return i < m.textureParameters.size() ? float(m.textureParameters[i]) : float(fallback);
+    };
+    switch (uint(m.texture)) {
+    case TEXTURE_CHECKERBOARD:
+        return {parameter(0, 0.5), parameter(1, 0), parameter(2, 0), parameter(3, 0)};
+    case TEXTURE_WOOD:
+        return {parameter(0, 0.1), parameter(1, 0.55), parameter(2, 0.35), parameter(3, 0.15)};
+    case TEXTURE_IMAGE: {
+        const Pixmap* pixmap = findPixmap(scene, pixmapIndexOf(m));
+        if (!pixmap || !pixmap->image)
+            throw Error(formatDiagnostic(m.textureLoc, nullptr, "error",
+                                         "texture 3 names no loaded pixmap"));
+        return {bitsAsFloat(uint(pixmap - scene.pixmaps.data())), 0, 0, 0};
+    }
+    default: return {0, 0, 0, 0};
+    }
+}
+
+GpuObject packObject(const Scene& scene, const SceneObject& object) {
     GpuObject g{};
     // M^-1 was composed in double from exact inverses; only now rounded to float.
     const glm::dmat4& inv = object.objectFromWorld;
@@ -43,7 +68,13 @@ GpuObject packObject(const SceneObject& object) {
     uint parameter = 0;
     if (kind == KIND_TAPERED_CYLINDER) parameter = floatBits(float(object.taper));
     if (kind == KIND_MESH) parameter = uint(object.mesh);
-    g.shape = {kind, parameter, 0, 0};
+    uint follow = 0;
+    if (scene.maxRecursionDepth > 0 && m.reflectivity > scene.minReflectivity) follow |= FOLLOW_REFLECTION;
+    if (scene.maxRecursionDepth > 0 && m.transparency > scene.minTransparency) follow |= FOLLOW_REFRACTION;
+    g.shape = {kind, parameter, follow, 0};
+    g.material = {float(m.reflectivity), float(m.transparency), float(m.speedOfLight),
+                  bitsAsFloat(uint(m.texture))};
+    g.texture = packTexture(scene, m);
     return g;
 }
 
@@ -111,7 +142,7 @@ private:
         }
         const uint spans = leafSpans(node, root);
         packed_.csgNodes.push_back({{CSG_LEAF, uint(packed_.objects.size()), 0, 0}});
-        packed_.objects.push_back(packObject(node));
+        packed_.objects.push_back(packObject(scene_, node));
         return {spans, 1};
     }
 
@@ -172,7 +203,7 @@ GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
             (object.mesh < 0 || size_t(object.mesh) >= scene.meshes.size()))
             throw Error(located(object, std::string("'") + shapeKeyword(object.type) +
                                             "' has no geometry loaded"));
-        packed.objects.push_back(packObject(object));
+        packed.objects.push_back(packObject(scene, object));
     }
     for (const Light& light : scene.lights)
         packed.lights.push_back({toVec4(light.position), toVec4(light.color)});
@@ -182,6 +213,23 @@ GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
         if (isBoolean(scene.objects[i].type)) packed.objects[i].shape.y = csg.pack(scene.objects[i]);
 
     if (features.kinds[KIND_MESH]) packMeshes(scene, packed);
+
+    if (features.has(Shading::Pixmaps)) {
+        // Every pixmap's rgb texels, one after the other (a dropped one is empty).
+        for (const Pixmap& pixmap : scene.pixmaps) {
+            const uint first = uint(packed.texels.size());
+            if (!pixmap.image) {
+                packed.pixmaps.push_back({{first, 0, 0, 0}});
+                continue;
+            }
+            const Image& image = *pixmap.image;
+            if (image.channels != 3)
+                throw Error("internal: pixmap " + std::to_string(pixmap.index) + " has " +
+                            std::to_string(image.channels) + " channels, not 3");
+            packed.pixmaps.push_back({{first, uint(image.width), uint(image.height), 0}});
+            packed.texels.insert(packed.texels.end(), image.pixels.begin(), image.pixels.end());
+        }
+    }
 
     if (features.objectBvh) {
         const ObjectBvh objects = buildObjectBvh(scene);
@@ -210,6 +258,7 @@ FrameParams packFrame(const Scene& scene, const GpuScene& packed, const CameraBa
                uint(scene.objects.size())};
     f.counts = {uint(scene.lights.size()), uint(packed.objectNodes.size()), packed.unboundedFirst,
                 packed.unboundedCount};
+    f.sampling = {uint(settings.spp), settings.seed, uint(scene.maxRecursionDepth), 0};
     return f;
 }
 

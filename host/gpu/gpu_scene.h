@@ -27,6 +27,9 @@ struct GpuScene {
     std::vector<GpuTriangle> triangles;
     // features.kinds[KIND_BOOLEAN]: every tree in post order.
     std::vector<GpuCsgNode> csgNodes;
+    // Shading::Pixmaps: one entry per Scene::pixmaps slot, and their texels.
+    std::vector<GpuPixmap> pixmaps;
+    std::vector<float> texels;
 };
 
 GpuScene packScene(const Scene& scene, const ShaderFeatures& features);

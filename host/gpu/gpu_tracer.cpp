@@ -83,6 +83,10 @@ public:
         }
         if (features.kinds[KIND_BOOLEAN])
             add(BINDING_CSG_NODES, makeBuffer(c, packed.csgNodes, Usage::eStorageBuffer));
+        if (features.has(Shading::Pixmaps)) {
+            add(BINDING_PIXMAPS, makeBuffer(c, packed.pixmaps, Usage::eStorageBuffer));
+            add(BINDING_TEXELS, makeBuffer(c, packed.texels, Usage::eStorageBuffer));
+        }
 
         const std::array<vk::DescriptorPoolSize, 2> poolSizes{{
             {vk::DescriptorType::eUniformBuffer, 1},
@@ -193,6 +197,8 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     if (features.kinds[KIND_MESH])
         for (uint binding : {BINDING_MESHES, BINDING_MESH_NODES, BINDING_TRIANGLES}) bind(binding, storage);
     if (features.kinds[KIND_BOOLEAN]) bind(BINDING_CSG_NODES, storage);
+    if (features.has(Shading::Pixmaps))
+        for (uint binding : {BINDING_PIXMAPS, BINDING_TEXELS}) bind(binding, storage);
     p->setLayout = vk::raii::DescriptorSetLayout(c.device, {{}, bindings});
     const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0, sizeof(TileParams));
     p->layout = vk::raii::PipelineLayout(c.device, {{}, *p->setLayout, pushRange});
@@ -213,11 +219,16 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
     GpuRenderStats& st = stats ? *stats : local;
 
     const auto setupStart = Clock::now();
-    const ShaderFeatures features = featuresOf(scene, options_.allFeatures);
+    if (settings.spp < 1 || settings.spp > kMaxSpp)
+        throw Error("render: samples per pixel must be from 1 to " + std::to_string(kMaxSpp));
+    const ShaderFeatures features = featuresOf(scene, settings, options_.allFeatures);
     const Pipeline& pipeline = pipelineFor(features, st);
-    // Tiles hold whole blocks, so a block never straddles two dispatches.
+    // Tiles hold whole blocks, so a block never straddles two dispatches, and
+    // shrink with the samples per pixel, so that no dispatch runs long.
     const int block = settings.block;
-    const int tile = std::max(block, options_.tileSize / block * block);
+    const int side = std::max(std::min(16, options_.tileSize),
+                              options_.tileSize / int(std::ceil(std::sqrt(double(settings.spp)))));
+    const int tile = std::max(block, side / block * block);
     TracePass pass(context_.impl(), pipeline, features, scene, camera, settings, tile);
     st.setupSeconds = secondsSince(setupStart) - st.shader.seconds;
 
@@ -241,7 +252,8 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
                     std::memcpy(&frame.id[i], &p.normal.w, sizeof(std::int32_t));
                 }
             }
-            st.rays += size_t((w + block - 1) / block) * size_t((h + block - 1) / block);
+            st.rays += size_t((w + block - 1) / block) * size_t((h + block - 1) / block) *
+                       size_t(settings.spp);
             ++st.tiles;
         }
     }
@@ -258,10 +270,14 @@ PixelTrace GpuTracer::tracePixel(const Scene& scene, const CameraBasis& camera,
                     std::to_string(settings.height) + " image");
     GpuRenderStats local;
     GpuRenderStats& st = stats ? *stats : local;
-    ShaderFeatures features = featuresOf(scene, options_.allFeatures);
+    // The debug record describes one ray: the pixel's centre, one sample.
+    RenderSettings oneSample = settings;
+    oneSample.spp = 1;
+    ShaderFeatures features = featuresOf(scene, oneSample, options_.allFeatures);
+    features.shading[size_t(Shading::Antialias)] = false;
     features.debugPixel = true;
     const Pipeline& pipeline = pipelineFor(features, st);
-    TracePass pass(context_.impl(), pipeline, features, scene, camera, settings, 1);
+    TracePass pass(context_.impl(), pipeline, features, scene, camera, oneSample, 1);
     // A one-pixel tile at the corner of the pixel's block: its one ray is the block's.
     const int block = std::max(settings.block, 1);
     pass.dispatchTile(x - x % block, y - y % block, 1, 1, block);

@@ -18,7 +18,11 @@ static_assert(offsetof(GpuObject, diffuse) == 64);
 static_assert(offsetof(GpuObject, specular) == 80);
 static_assert(offsetof(GpuObject, emissive) == 96);
 static_assert(offsetof(GpuObject, shape) == 112);
-static_assert(sizeof(GpuObject) == 128);
+static_assert(offsetof(GpuObject, material) == 128);
+static_assert(offsetof(GpuObject, texture) == 144);
+static_assert(sizeof(GpuObject) == 160);
+
+static_assert(sizeof(GpuPixmap) == 16);
 
 static_assert(offsetof(GpuLight, position) == 0);
 static_assert(offsetof(GpuLight, color) == 16);
@@ -32,7 +36,8 @@ static_assert(offsetof(FrameParams, background) == 64);
 static_assert(offsetof(FrameParams, globalAmbient) == 80);
 static_assert(offsetof(FrameParams, image) == 96);
 static_assert(offsetof(FrameParams, counts) == 112);
-static_assert(sizeof(FrameParams) == 128);
+static_assert(offsetof(FrameParams, sampling) == 128);
+static_assert(sizeof(FrameParams) == 144);
 
 static_assert(sizeof(TileParams) == 16);
 
@@ -52,6 +57,8 @@ static_assert(sizeof(GpuCsgNode) == 16);
 
 static_assert(kGpuKinds.size() == KIND_COUNT);
 static_assert(BVH_STACK_SIZE == kMaxBvhDepth, "the shader's BVH stack holds the deepest BVH");
+static_assert(MAX_RECURSION_DEPTH == kMaxRecursionDepth,
+              "the shader's ray stack holds the deepest ray tree the reader accepts");
 static_assert(TORUS_MAJOR_RADIUS == kTorusMajorRadius && TORUS_TUBE_RADIUS == kTorusTubeRadius);
 
 }  // namespace vkray::gpu

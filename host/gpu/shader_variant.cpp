@@ -4,6 +4,7 @@
 #include "scene/scene_geometry.h"
 #include "shaders/layout.h"
 
+#include <algorithm>
 #include <bit>
 
 namespace vkray::gpu {
@@ -27,17 +28,48 @@ std::uint32_t gpuKindOf(ShapeType type) {
 
 namespace {
 
-void addKinds(const SceneObject& object, ShaderFeatures& features) {
+// The shape kinds and the material features of an object and its operands.
+void addObject(const Scene& scene, const SceneObject& object, ShaderFeatures& features) {
     features.kinds[gpuKindOf(object.type)] = true;
-    for (const SceneObject& operand : object.operands) addKinds(operand, features);
+    const Material& m = object.material;
+    const bool recursion = scene.maxRecursionDepth > 0;
+    if (recursion && m.reflectivity > scene.minReflectivity)
+        features.shading[size_t(Shading::Reflection)] = true;
+    if (recursion && m.transparency > scene.minTransparency)
+        features.shading[size_t(Shading::Refraction)] = true;
+    const uint texture = uint(m.texture);
+    if (texture == TEXTURE_CHECKERBOARD || texture == TEXTURE_WOOD)
+        features.shading[size_t(Shading::Textures)] = true;
+    if (texture == TEXTURE_IMAGE) features.shading[size_t(Shading::Pixmaps)] = true;
+    for (const SceneObject& operand : object.operands) addObject(scene, operand, features);
+}
+
+// Whether a feeler from some lit point can meet an object: with two objects
+// or more, or one that is not convex (a point of a sphere, cube, plane or
+// square facing a light sees it past its own surface).
+bool canShadow(const Scene& scene) {
+    if (scene.lights.empty() || scene.objects.empty()) return false;
+    if (scene.objects.size() > 1) return true;
+    switch (scene.objects[0].type) {
+    case ShapeType::Sphere:
+    case ShapeType::Plane:
+    case ShapeType::Square:
+    case ShapeType::Cube: return false;
+    default: return true;
+    }
 }
 
 }  // namespace
 
-ShaderFeatures featuresOf(const Scene& scene, bool allFeatures) {
+ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bool allFeatures) {
     ShaderFeatures features;
-    for (const SceneObject& object : scene.objects) addKinds(object, features);
-    if (allFeatures) features.kinds.fill(true);
+    for (const SceneObject& object : scene.objects) addObject(scene, object, features);
+    features.shading[size_t(Shading::Shadows)] = canShadow(scene);
+    features.shading[size_t(Shading::Antialias)] = settings.spp > 1;
+    if (allFeatures) {
+        features.kinds.fill(true);
+        features.shading.fill(true);
+    }
     std::size_t bounded = 0;
     for (const SceneObject& object : scene.objects)
         bounded += worldBounds(object, scene).finite() ? 1 : 0;
@@ -49,6 +81,8 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines) {
     Defines defines;
     for (std::size_t kind = 0; kind < kGpuKinds.size(); ++kind)
         if (features.kinds[kind]) defines.emplace_back(kGpuKinds[kind].define, "1");
+    for (std::size_t i = 0; i < kGpuShading.size(); ++i)
+        if (features.shading[i]) defines.emplace_back(kGpuShading[i].define, "1");
     if (features.objectBvh) defines.emplace_back("VKRAY_OBJECT_BVH", "1");
     if (features.debugPixel) defines.emplace_back("VKRAY_DEBUG_PIXEL", "1");
     defines.insert(defines.end(), userDefines.begin(), userDefines.end());
@@ -66,6 +100,11 @@ std::string describe(const ShaderFeatures& features) {
     }
     if (count == kGpuKinds.size()) text = "all shapes";
     if (count == 0) text = "no shapes";
+    const auto shading = std::count(features.shading.begin(), features.shading.end(), true);
+    if (shading == std::ssize(features.shading)) text += "+all shading";
+    else
+        for (std::size_t i = 0; i < kGpuShading.size(); ++i)
+            if (features.shading[i]) text += std::string("+") + kGpuShading[i].name;
     if (features.objectBvh) text += "+bvh";
     if (features.debugPixel) text += "+debug-pixel";
     return text;
@@ -74,25 +113,37 @@ std::string describe(const ShaderFeatures& features) {
 std::vector<ShaderFeatures> allVariants(bool everyCombination) {
     std::vector<ShaderFeatures> variants;
     const unsigned kinds = unsigned(kGpuKinds.size());
-    const unsigned all = (1u << kinds) - 1;
-    for (unsigned mask = 0; mask <= all; ++mask) {
+    const unsigned allKinds = (1u << kinds) - 1;
+    const auto add = [&](unsigned kindMask, unsigned shadingMask, bool debugPixel) {
+        ShaderFeatures f;
+        for (unsigned kind = 0; kind < kinds; ++kind) f.kinds[kind] = (kindMask >> kind) & 1u;
+        for (unsigned i = 0; i < kGpuShading.size(); ++i) f.shading[i] = (shadingMask >> i) & 1u;
+        f.debugPixel = debugPixel;
+        for (bool bvh : {false, true}) {
+            f.objectBvh = bvh;
+            variants.push_back(f);
+        }
+    };
+    // Shapes alone.
+    for (unsigned mask = 0; mask <= allKinds; ++mask) {
         const int count = std::popcount(mask);
         // Shape code interacts pairwise at most (CSG calls the others' span
         // functions), so pairs and "all but one" cover what can break.
         if (!everyCombination && count > 2 && count < int(kinds) - 1) continue;
-        ShaderFeatures f;
-        for (unsigned kind = 0; kind < kinds; ++kind) f.kinds[kind] = (mask >> kind) & 1u;
-        for (bool bvh : {false, true}) {
-            f.objectBvh = bvh;
-            f.debugPixel = false;
-            variants.push_back(f);
-            // The debug record touches every shape's path: each kind alone, and all.
-            if (count == 1 || mask == all) {
-                f.debugPixel = true;
-                variants.push_back(f);
-            }
-        }
+        add(mask, 0, false);
+        // The debug record touches every shape's path: each kind alone, and all.
+        if (count == 1 || mask == allKinds) add(mask, 0, true);
     }
+    // Shading: its code (feelers, the ray stack, textures' (u, v) per kind)
+    // calls every shape's, but its features do not call one another's.
+    const unsigned allShading = (1u << kGpuShading.size()) - 1;
+    for (unsigned shading = 1; shading <= allShading; ++shading) {
+        if (!everyCombination && std::popcount(shading) != 1 && shading != allShading) continue;
+        add(allKinds, shading, false);
+        if (shading != allShading && !everyCombination) continue;
+        for (unsigned kind = 0; kind < kinds; ++kind) add(1u << kind, shading, false);
+    }
+    add(allKinds, allShading, true);
     return variants;
 }
 

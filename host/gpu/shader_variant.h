@@ -4,6 +4,7 @@
 // keep the dead code in the SPIR-V that lavapipe JIT-compiles every run).
 #pragma once
 
+#include "scene/camera.h"
 #include "scene/scene.h"
 
 #include <array>
@@ -40,28 +41,52 @@ std::uint32_t gpuKindOf(ShapeType type);
 // each object is cheaper than walking nodes.
 inline constexpr std::size_t kObjectBvhThreshold = 8;
 
+// Whitted shading (SHADING_SPEC.md), each part compiled in only where a
+// scene can use it; indexed like ShaderFeatures::shading.
+enum class Shading { Shadows, Reflection, Refraction, Textures, Pixmaps, Antialias };
+struct GpuShading {
+    const char* define;
+    const char* name;  // in variant descriptions
+};
+inline constexpr std::array<GpuShading, 6> kGpuShading{{
+    {"VKRAY_SHADOWS", "shadows"},        // lights, and an object that can shade another point
+    {"VKRAY_REFLECTION", "reflection"},  // reflectivity > minReflectivity, maxRecursionDepth > 0
+    {"VKRAY_REFRACTION", "refraction"},  // transparency > minTransparency, maxRecursionDepth > 0
+    {"VKRAY_TEXTURES", "textures"},      // solid textures (checkerboard, wood)
+    {"VKRAY_PIXMAPS", "pixmaps"},        // image textures
+    {"VKRAY_ANTIALIAS", "antialias"},    // more than one sample per pixel
+}};
+
 struct ShaderFeatures {
-    std::array<bool, kGpuKinds.size()> kinds{};  // indexed by KIND_*
+    std::array<bool, kGpuKinds.size()> kinds{};      // indexed by KIND_*
+    std::array<bool, kGpuShading.size()> shading{};  // indexed by Shading
     bool objectBvh = false;   // objects found through a BVH
     bool debugPixel = false;  // `vkray pixel`: the shader writes a trace record
 
+    bool has(Shading s) const { return shading[size_t(s)]; }
     bool operator==(const ShaderFeatures&) const = default;
 };
 
-// The features `scene` needs (every shape kind when allFeatures; the object
-// BVH is a property of the scene's size, not a shape, so it stays as needed).
-ShaderFeatures featuresOf(const Scene& scene, bool allFeatures);
+// The features `scene` rendered with `settings` needs (every shape kind and
+// shading feature when allFeatures; the object BVH is a property of the
+// scene's size, so it stays as needed).
+ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bool allFeatures);
 
 // The defines of a variant, followed by the user's own (-D NAME=VALUE).
 Defines definesFor(const ShaderFeatures& features, const Defines& userDefines = {});
 
-// "sphere+cube", "all shapes", "no shapes", with "+bvh" and "+debug-pixel".
+// "sphere+cube", "all shapes", "no shapes", then the shading features
+// ("+shadows+reflection", "+all shading"), "+bvh" and "+debug-pixel".
 std::string describe(const ShaderFeatures& features);
 
 // The variants `vkray shaders check` compiles, each with and without the
-// object BVH, and with the debug-pixel record for each kind alone and for all:
-// every combination of shape kinds when everyCombination (--all: 530
-// variants), else those of at most two kinds or all but at most one (110).
+// object BVH. Shapes without shading features: those of at most two kinds or
+// all but at most one, with the debug-pixel record for each kind alone and
+// for all (110); every combination when everyCombination (--all: 530). Then
+// the shading features, whose code calls every shape's: each alone and all
+// together with all shapes, and all together with each kind alone and with
+// the debug-pixel record (162 in all); with --all, every combination of them
+// with all shapes and with each kind alone (1,138).
 std::vector<ShaderFeatures> allVariants(bool everyCombination = false);
 
 }  // namespace vkray::gpu

@@ -32,11 +32,15 @@ glm::dvec3 toWorldNormal(const SceneObject& object, const glm::dvec3& genericNor
 
 WorldHit facingHit(const Ray& worldRay, double t, glm::dvec3 normal, glm::dvec3 geometricNormal,
                    int index, const SceneObject* surface) {
+    const bool entering = glm::dot(normal, worldRay.direction) < 0;
     if (geometricNormal == glm::dvec3(0)) geometricNormal = normal;
     if (glm::dot(geometricNormal, worldRay.direction) > 0) geometricNormal = -geometricNormal;
     if (glm::dot(normal, geometricNormal) < 0) normal = -normal;
-    return WorldHit{t, worldRay.origin + t * worldRay.direction, glm::normalize(normal), index,
-                    surface};
+    WorldHit hit{t, worldRay.origin + t * worldRay.direction, glm::normalize(normal), index};
+    hit.geometricNormal = glm::normalize(geometricNormal);
+    hit.entering = entering;
+    hit.surface = surface;
+    return hit;
 }
 
 double taperOf(const SceneObject& object) {

@@ -21,6 +21,13 @@ struct WorldHit {
     glm::dvec3 point;
     glm::dvec3 normal;
     int object;  // index in scene.objects (a boolean counts as one object)
+    // The unit geometric normal (the triangle's own for meshes, else the
+    // same as `normal`), facing the ray: secondary rays leave from beside it.
+    glm::dvec3 geometricNormal{0};
+    // Whether the ray meets the surface from outside: the intersector's
+    // outward normal (a mesh's interpolated one; for a boolean, outward of
+    // the result) points against the ray. Refraction enters or leaves by it.
+    bool entering = true;
     // The primitive whose surface was hit: the object itself, or for a
     // boolean the operand the boundary lies on. Its material shades the hit
     // (Hill ch. 14 shades a boolean's hit with the hit primitive's material).

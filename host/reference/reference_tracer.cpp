@@ -1,9 +1,11 @@
-// The CPU reference renderer: one primary ray per pixel (or per block), the
-// closest hit through the object BVH (or by brute force), and Hill's local
-// shading model without shadows (ch. 8 and 14), all in double.
+// The CPU reference renderer's driver: the primary rays of every pixel (or
+// block), spp jittered samples each (shaders/sampling.h, through
+// jitteredSample), the closest hits through the object BVH (or by brute
+// force), and Whitted shading (shading.h), all in double.
 #include "reference/reference_tracer.h"
 
 #include "reference/scene_intersector.h"
+#include "reference/shading.h"
 #include "scene/error.h"
 
 #include <glm/geometric.hpp>
@@ -34,39 +36,8 @@ Ray primaryRay(const CameraBasis& camera, const RenderSettings& settings, PixelS
     return {camera.eye, direction};
 }
 
-// Hill's local model at point p with unit normal m facing the viewer, who
-// looks from direction v (unit, from p toward the eye):
-//     emissive + ambient * globalAmbient
-//       + sum over lights of (diffuse max(0, m.s) + specular max(0, m.h)^f) * light
-// with s the unit vector toward the light and h = normalize(s + v) the halfway
-// vector. No shadows: every light is seen from every point.
-glm::dvec3 shade(const Scene& scene, const Material& material, const glm::dvec3& p,
-                 const glm::dvec3& m, const glm::dvec3& v,
-                 std::vector<PixelTrace::LightTerms>* terms = nullptr) {
-    glm::dvec3 color = material.emissive + material.ambient * scene.globalAmbient;
-    for (const Light& light : scene.lights) {
-        PixelTrace::LightTerms term;
-        const glm::dvec3 toLight = light.position - p;
-        const glm::dvec3 s = glm::normalize(toLight);
-        const glm::dvec3 halfway = s + v;
-        // A light on the surface has no direction; one straight behind, no halfway vector.
-        if (glm::dot(toLight, toLight) > 0) {
-            term.mDotS = glm::dot(m, s);
-            if (term.mDotS > 0) term.diffuse = material.diffuse * term.mDotS * light.color;
-            if (glm::dot(halfway, halfway) > 0) {
-                term.mDotH = glm::dot(m, glm::normalize(halfway));
-                if (term.mDotH > 0)
-                    term.specular = material.specular *
-                                    std::pow(term.mDotH, material.specularExponent) * light.color;
-            }
-        }
-        color += term.diffuse + term.specular;
-        if (terms) terms->push_back(term);
-    }
-    return color;
-}
-
-// What one primary ray sees, in the Frame's terms.
+// What one pixel (or block) shows: the mean colour of its samples, and the
+// AOVs of sample 0.
 struct PixelValue {
     glm::vec3 color;
     float depth;
@@ -74,33 +45,28 @@ struct PixelValue {
     std::int32_t id;
 };
 
-// The material that shades a hit: the surface's own (for a boolean, the
-// operand that was hit, as in Hill's ch. 14).
-const Material& materialOf(const Scene& scene, const WorldHit& hit) {
-    return hit.surface ? hit.surface->material : scene.objects[size_t(hit.object)].material;
-}
-
-PixelValue tracePrimary(const Scene& scene, const SceneIntersector& intersector, const Ray& ray) {
-    // Primary rays start at the eye, not on a surface, so t > 0 needs no epsilon.
-    const std::optional<WorldHit> hit = intersector.closestHit(ray, 0.0);
-    if (!hit)
-        return {glm::vec3(scene.background), std::numeric_limits<float>::infinity(),
-                glm::vec3(0), -1};
-    const Material& material = materialOf(scene, *hit);
-    const glm::dvec3 color = shade(scene, material, hit->point, hit->normal, -ray.direction);
-    return {glm::vec3(color), float(hit->t), glm::vec3(hit->normal), hit->object};
+PixelValue tracePixelSamples(const WhittedShader& shader, const CameraBasis& camera,
+                             const RenderSettings& settings, int x, int y) {
+    const int samples = std::max(settings.spp, 1);
+    glm::dvec3 sum(0);
+    std::optional<WorldHit> first;
+    for (int k = 0; k < samples; ++k) {
+        const Ray ray = primaryRay(camera, settings, jitteredSample(x, y, settings, k));
+        sum += shader.radiance(ray, 0, Medium{}, k == 0 ? &first : nullptr);
+    }
+    const glm::vec3 color(sum / double(samples));
+    if (!first) return {color, std::numeric_limits<float>::infinity(), glm::vec3(0), -1};
+    return {color, float(first->t), glm::vec3(first->normal), first->object};
 }
 
 // One band of the image: the block row starting at y0. With block > 1 every
 // pixel of a block shows the ray through the block's centre, so that ray is
 // traced once and its value copied (clipped at the image's right and bottom).
-void renderBlockRow(const Scene& scene, const SceneIntersector& intersector,
-                    const CameraBasis& camera, const RenderSettings& settings, int block, int y0,
-                    Frame& frame) {
+void renderBlockRow(const WhittedShader& shader, const CameraBasis& camera,
+                    const RenderSettings& settings, int block, int y0, Frame& frame) {
     const int y1 = std::min(y0 + block, frame.height);
     for (int x0 = 0; x0 < frame.width; x0 += block) {
-        const Ray ray = primaryRay(camera, settings, primarySample(x0, y0, block));
-        const PixelValue value = tracePrimary(scene, intersector, ray);
+        const PixelValue value = tracePixelSamples(shader, camera, settings, x0, y0);
         const int x1 = std::min(x0 + block, frame.width);
         for (int y = y0; y < y1; ++y) {
             for (int x = x0; x < x1; ++x) {
@@ -122,7 +88,8 @@ PixelTrace tracePixel(const Scene& scene, const CameraBasis& camera,
     PixelTrace trace;
     trace.x = x;
     trace.y = y;
-    const Ray ray = primaryRay(camera, settings, primarySample(x, y, std::max(settings.block, 1)));
+    // Sample 0's ray: the pixel centre with one sample per pixel.
+    const Ray ray = primaryRay(camera, settings, jitteredSample(x, y, settings, 0));
     trace.rayOrigin = ray.origin;
     trace.rayDirection = ray.direction;
     // Each top-level object on its own (a boolean's generic ray is that of its
@@ -134,19 +101,17 @@ PixelTrace tracePixel(const Scene& scene, const CameraBasis& camera,
         trace.objects.push_back({generic.origin, generic.direction,
                                  hit ? std::optional<double>(hit->t) : std::nullopt});
     }
-    const std::optional<WorldHit> hit = closestHitBruteForce(scene, ray, 0.0);
-    if (!hit) {
-        trace.color = scene.background;
-        return trace;
+    // Brute force throughout: the pixel report checks the BVH, not uses it.
+    const SceneIntersector intersector(scene, true);
+    const WhittedShader shader(scene, intersector);
+    std::optional<WorldHit> hit;
+    trace.color = shader.radiance(ray, 0, Medium{}, &hit, &trace);
+    if (hit) {
+        trace.hitObject = hit->object;
+        trace.t = hit->t;
+        trace.point = hit->point;
+        trace.normal = hit->normal;
     }
-    const Material& material = materialOf(scene, *hit);
-    trace.hitObject = hit->object;
-    trace.t = hit->t;
-    trace.point = hit->point;
-    trace.normal = hit->normal;
-    trace.emissive = material.emissive;
-    trace.ambient = material.ambient * scene.globalAmbient;
-    trace.color = shade(scene, material, hit->point, hit->normal, -ray.direction, &trace.lights);
     return trace;
 }
 
@@ -157,6 +122,9 @@ Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings
         throw Error("render: the image size must be positive (got " +
                     std::to_string(settings.width) + " x " + std::to_string(settings.height) +
                     ")");
+    if (settings.spp < 1 || settings.spp > kMaxSpp)
+        throw Error("render: samples per pixel must be 1.." + std::to_string(kMaxSpp) +
+                    " (got " + std::to_string(settings.spp) + ")");
     const int block = std::max(settings.block, 1);
     Frame frame(settings.width, settings.height);
 
@@ -169,13 +137,14 @@ Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings
     threads = std::clamp(threads, 1, blockRows);
 
     const SceneIntersector intersector(scene, options.bruteForce);  // one BVH for all rays
+    const WhittedShader shader(scene, intersector);
     std::atomic<int> nextRow{0};
     std::exception_ptr failure;
     std::mutex failureMutex;
     auto worker = [&] {
         try {
             for (int row = nextRow++; row < blockRows; row = nextRow++)
-                renderBlockRow(scene, intersector, camera, settings, block, row * block, frame);
+                renderBlockRow(shader, camera, settings, block, row * block, frame);
         } catch (...) {
             // Stop every worker and rethrow the first failure on the caller's thread.
             nextRow = blockRows;

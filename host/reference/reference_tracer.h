@@ -15,15 +15,18 @@ struct ReferenceOptions {
     bool bruteForce = false;  // test every object for every ray (the BVH's oracle)
 };
 
-// Renders every pixel (one primary ray per pixel, or per block) with Hill's
-// local shading model. Every shape type is drawn; throws Error (at the
+// Renders every pixel (or block: settings.block) with Whitted shading
+// (shading.h): settings.spp samples each (1: the centre), their mean colour,
+// and the AOVs of sample 0. Every shape type is drawn; throws Error (at the
 // object's place) for a mesh object whose mesh is not loaded
-// (loadSceneGeometry) and for a boolean operand without an inside.
+// (loadSceneGeometry) and for a boolean operand without an inside, and for
+// spp outside 1..kMaxSpp.
 Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
              const ReferenceOptions& options = {});
 
-// `vkray pixel`: the one primary ray of pixel (x, y), with every object test
-// and every shading term, as PixelTrace records them.
+// `vkray pixel`: sample 0's primary ray of pixel (x, y), with every object
+// test and the shading terms of its hit (attenuated by the shadow feelers,
+// scaled by the texture); the colour is that ray's whole Whitted colour.
 PixelTrace tracePixel(const Scene& scene, const CameraBasis& camera,
                       const RenderSettings& settings, int x, int y);
 

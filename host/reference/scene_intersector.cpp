@@ -56,6 +56,23 @@ std::optional<WorldHit> SceneIntersector::closestHit(const Ray& worldRay, double
     return best;
 }
 
+void SceneIntersector::forEachCandidate(const Ray& worldRay, double tMin, double tMax,
+                                        const std::function<bool(int)>& visit) const {
+    if (bruteForce_) {
+        for (std::size_t i = 0; i < scene_.objects.size(); ++i)
+            if (!visit(int(i))) return;
+        return;
+    }
+    for (const std::uint32_t index : bvh_.unbounded)
+        if (!visit(int(index))) return;
+    // Stopping: a tMax below tMin makes every box left a miss.
+    bool stopped = false;
+    walkBvh(bvh_.bvh, worldRay, tMin, [&] { return stopped ? -1.0 : tMax; },
+            [&](std::uint32_t index) {
+                if (!stopped) stopped = !visit(int(index));
+            });
+}
+
 std::optional<WorldHit> closestHit(const Scene& scene, const Ray& worldRay, double tMin) {
     return SceneIntersector(scene).closestHit(worldRay, tMin);
 }

@@ -8,6 +8,7 @@
 #include "scene/scene.h"
 #include "scene/scene_geometry.h"
 
+#include <functional>
 #include <optional>
 
 namespace vkray::reference {
@@ -23,6 +24,13 @@ public:
     // tie (coinciding surfaces), won by the lower object index, as
     // closestHitBruteForce decides, whatever order the BVH meets them in.
     std::optional<WorldHit> closestHit(const Ray& worldRay, double tMin) const;
+
+    // Calls visit(index) once for each object the ray might meet within
+    // (tMin, tMax): the unbounded ones, then those whose world box the ray
+    // crosses there (every object by brute force). Stops when visit returns
+    // false. Shadow feelers test each candidate on its own (intersectObject).
+    void forEachCandidate(const Ray& worldRay, double tMin, double tMax,
+                          const std::function<bool(int)>& visit) const;
 
 private:
     const Scene& scene_;

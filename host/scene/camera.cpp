@@ -1,12 +1,14 @@
 #include "scene/camera.h"
 
 #include "scene/error.h"
+#include "shaders/sampling.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace vkray {
@@ -65,6 +67,17 @@ Camera autoCamera(const Scene& scene) {
     camera.look = center;
     camera.eye = center + glm::normalize(glm::dvec3(20, 15, 20)) * distance;
     return camera;
+}
+
+PixelSample jitteredSample(int x, int y, const RenderSettings& settings, int k) {
+    const int block = std::max(settings.block, 1);
+    if (settings.spp <= 1) return primarySample(x, y, block);
+    const int x0 = x - x % block, y0 = y - y % block;
+    const auto pixel = std::uint32_t(y0) * std::uint32_t(settings.width) + std::uint32_t(x0);
+    const auto n = std::uint32_t(settings.spp);
+    const double dx = sampling::sampleOffsetX(settings.seed, pixel, std::uint32_t(k), n);
+    const double dy = sampling::sampleOffsetY(settings.seed, pixel, std::uint32_t(k), n);
+    return {x0 + block * dx, y0 + block * dy};
 }
 
 PixelSample primarySample(int x, int y, int block) {

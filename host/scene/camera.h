@@ -5,15 +5,22 @@
 
 #include "scene/scene.h"
 
+#include <cstdint>
+
 namespace vkray {
 
-// What a renderer needs besides the scene: image size and the seed's block
-// size (one ray per block x block pixels, the block filled with its colour).
+// What a renderer needs besides the scene: image size, the seed's block
+// size (one ray per block x block pixels, the block filled with its colour)
+// and anti-aliasing: spp jittered samples per pixel (or block), placed by
+// shaders/sampling.h from `seed` (same seed, same image).
 struct RenderSettings {
     int width = 640;
     int height = 480;
     int block = 1;
+    int spp = 1;              // 1..kMaxSpp; 1: the pixel (block) centre
+    std::uint32_t seed = 0;
 };
+inline constexpr int kMaxSpp = 4096;
 
 // Hill's camera basis: n points from the look point back to the eye, u right,
 // v up. A primary ray through image point (sx, sy) in [-1, 1]^2 (x right, y up)
@@ -37,5 +44,11 @@ Camera autoCamera(const Scene& scene);
 // centre of the block holding it.
 struct PixelSample { double px, py; };
 PixelSample primarySample(int x, int y, int block);
+
+// Sample k (0 <= k < settings.spp) of pixel (x, y): with spp 1 the
+// primarySample; otherwise the block's top-left corner (the pixel's, for
+// block 1) plus block times shaders/sampling.h's stratified offset, drawn for
+// settings.seed and the index y0 * width + x0 of the block's first pixel.
+PixelSample jitteredSample(int x, int y, const RenderSettings& settings, int k);
 
 }  // namespace vkray

@@ -16,6 +16,7 @@
 namespace vkray {
 
 struct TriangleMesh;  // scene/triangle_mesh.h
+struct Image;         // image/image_io.h
 
 // Every shape keyword of Hill's SDL (plus the extrude extension), in the
 // order of shapeKeyword().
@@ -47,8 +48,9 @@ struct Material {
     double speedOfLight = 1;
     double specularFraction = 0;
     double surfaceRoughness = 0;
-    int texture = 0;                  // `texture n`: 0 = none
+    int texture = 0;                  // `texture n`: 0 none, 1 checkerboard, 2 wood, 3 image
     std::vector<double> textureParameters;  // `parameters n p1 .. pn`
+    FileLoc textureLoc;               // the `texture` word (errors about the texture)
 };
 
 struct SceneObject {
@@ -83,7 +85,14 @@ struct Pixmap {
     int index = 0;
     std::string file;  // resolved against the scene's folder
     FileLoc loc;
+    // Filled by loadSceneGeometry (scene/pixmaps.h): 3 channels, row 0 at the
+    // top, 8-bit files as value / 255.
+    std::shared_ptr<const Image> image;
 };
+
+// maxRecursionDepth is refused above this by the reader: the GPU follows
+// reflected and refracted rays with an explicit stack sized from it.
+inline constexpr int kMaxRecursionDepth = 8;
 
 struct Scene {
     std::string path;  // the file it was read from ("" for text)
@@ -91,7 +100,7 @@ struct Scene {
     glm::dvec3 globalAmbient{0.1, 0.1, 0.1};
     double minReflectivity = 0.5;
     double minTransparency = 0.5;
-    int maxRecursionDepth = 3;
+    int maxRecursionDepth = 3;         // 0..kMaxRecursionDepth
     std::vector<Light> lights;
     std::vector<SceneObject> objects;  // scene order: object id i is objects[i]
     std::vector<Pixmap> pixmaps;

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "scene/error.h"
+#include "scene/pixmaps.h"
 #include "scene/triangle_mesh.h"
 
 namespace vkray {
@@ -232,6 +233,7 @@ void loadSceneGeometry(Scene& scene, bool lenient, std::vector<std::string>* war
     }
     scene.objects = std::move(kept);
     if (anyLeftOut) dropUnusedMeshes(scene);
+    loadPixmaps(scene, lenient, warnings);
 }
 
 Scene loadScene(const std::string& path, const SdlOptions& options,

@@ -22,7 +22,8 @@ namespace vkray {
 //   /path/pawn.3vn: error: cannot read mesh file: No such file or directory
 // Lenient: the object is left out with that warning instead ("...; left out",
 // the file's message as a note); a failure inside a boolean leaves out the
-// whole top-level boolean, and the warning says so.
+// whole top-level boolean, and the warning says so. Then decodes the
+// pixmaps and checks the textures that use them (scene/pixmaps.h).
 void loadSceneGeometry(Scene& scene, bool lenient, std::vector<std::string>* warnings);
 
 // Parse + loadSceneGeometry: what `vkray render` does.

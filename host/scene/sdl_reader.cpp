@@ -205,9 +205,18 @@ void SdlParser::parseSetting(Keyword keyword, const Token& word) {
         case Keyword::MinTransparency:
             scene_.minTransparency = readNumber(word);
             break;
-        case Keyword::MaxRecursionDepth:
-            scene_.maxRecursionDepth = readCount(word, "a whole number >= 0");
+        case Keyword::MaxRecursionDepth: {
+            Token where;
+            const double depth = readNumber(word, &where);
+            if (depth < 0 || depth > kMaxRecursionDepth || depth != std::floor(depth))
+                throwAt(where, "'maxRecursionDepth' needs a whole number from 0 to " +
+                                   std::to_string(kMaxRecursionDepth) + ", found " +
+                                   inQuotes(where.text) +
+                                   " (the GPU follows reflections and refractions with a "
+                                   "stack of that depth)");
+            scene_.maxRecursionDepth = int(depth);
             break;
+        }
 
         case Keyword::Translate: {
             const glm::dvec3 d = readVec3(word);
@@ -273,9 +282,16 @@ void SdlParser::parseSetting(Keyword keyword, const Token& word) {
         case Keyword::SurfaceRoughness:
             material_.surfaceRoughness = readNumber(word);
             break;
-        case Keyword::Texture:
-            material_.texture = readCount(word, "a texture number >= 0");
+        case Keyword::Texture: {
+            Token where;
+            const double code = readNumber(word, &where);
+            if (code != 0 && code != 1 && code != 2 && code != 3)
+                throwAt(word, "texture " + where.text +
+                                  " is not one of 0 none, 1 checkerboard, 2 wood, 3 image");
+            material_.texture = int(code);
+            material_.textureLoc = word.loc;
             break;
+        }
         case Keyword::Parameters: {
             const int count = readCount(word, "a parameter count >= 0");
             std::vector<double> parameters;

@@ -46,8 +46,10 @@ bool intersectTriangle(ShearedRay r, vec3 p0, vec3 p1, vec3 p2, float tMin, floa
     return true;
 }
 
-// The nearest triangle of mesh `index` in (tMin, tMax), with the interpolated normal.
-bool intersectMesh(uint index, vec3 o, vec3 d, float tMin, float tMax, out float t, out vec3 normal) {
+// The nearest triangle of mesh `index` in (tMin, tMax), with the interpolated
+// normal and the triangle's own (geometric) one, unnormalised.
+bool intersectMesh(uint index, vec3 o, vec3 d, float tMin, float tMax, out float t, out vec3 normal,
+                   out vec3 geometricNormal) {
     GpuMesh mesh = meshes[index];
     ShearedRay sheared = shearRay(o, d);
     vec3 invD = 1.0 / d;
@@ -85,6 +87,7 @@ bool intersectMesh(uint index, vec3 o, vec3 d, float tMin, float tMax, out float
                 if (intersectTriangle(sheared, tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, tMin, t, tHit, bary)) {
                     t = tHit;
                     normal = bary.x * tri.n0.xyz + bary.y * tri.n1.xyz + bary.z * tri.n2.xyz;
+                    geometricNormal = cross(tri.p1.xyz - tri.p0.xyz, tri.p2.xyz - tri.p0.xyz);
                     found = true;
                 }
             }

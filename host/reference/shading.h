@@ -1,0 +1,84 @@
+// Whitted shading for the CPU reference (Hill ch. 14, README "Shading"):
+// the local model with shadow feelers through transparent occluders,
+// textures, and reflected and refracted rays followed recursively down to
+// maxRecursionDepth, all in double.
+#pragma once
+
+#include "image/pixel_trace.h"
+#include "reference/scene_intersector.h"
+#include "scene/scene.h"
+
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <optional>
+#include <vector>
+
+namespace vkray::reference {
+
+// The media a ray travels in, innermost last: the speeds of light of up to
+// kMediumStackSize nested transparent objects it has entered (air, speed 1,
+// outside them all). Deeper nesting is counted, but the ray keeps the
+// deepest remembered speed (the GPU's bound, shared so both agree).
+inline constexpr int kMediumStackSize = 4;
+struct Medium {
+    std::array<double, kMediumStackSize> speeds{};
+    int depth = 0;
+
+    double speed() const;                 // c of the medium the ray is in
+    Medium entered(double speed) const;   // through the surface of an object of that speed
+    Medium left() const;                  // out of the innermost object
+};
+
+// Where a secondary ray leaving hit point p in `direction` starts: p moved
+// off the surface along the geometric normal n (unit, either side; turned
+// to the side the ray leaves to) by max(|p|_inf, 1) * 2^-32. This is Ray
+// Tracing Gems ch. 6's idea (an offset that scales with the magnitude of
+// the coordinates, as their rounding error does) with double's ulps: about
+// 2^20 ulps of |p|, far above the intersectors' error and far below any
+// feature of a scene.
+glm::dvec3 offsetRayOrigin(const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& direction);
+
+// Mirror direction of unit d about the unit normal m.
+glm::dvec3 reflectDirection(const glm::dvec3& d, const glm::dvec3& m);
+
+// Snell's law for unit d meeting the unit normal m (m.d < 0) with
+// eta = c2 / c1 (the ratio of the speeds of light beyond and before the
+// surface): the unit transmitted direction, or nothing beyond the critical
+// angle (total internal reflection).
+std::optional<glm::dvec3> refractDirection(const glm::dvec3& d, const glm::dvec3& m, double eta);
+
+// The material that shades a hit: the surface's own (for a boolean, the
+// operand that was hit, as in Hill ch. 14).
+const Material& materialOf(const Scene& scene, const WorldHit& hit);
+
+class WhittedShader {
+public:
+    // Both must outlive the shader; `intersector` may walk the BVH or not.
+    WhittedShader(const Scene& scene, const SceneIntersector& intersector);
+
+    // What a ray sees: the background where it hits nothing, else Hill's
+    // shade() at its hit, `level` deep in the tree of secondary rays (0:
+    // primary), travelling in `medium`. `firstHit` receives the ray's own hit
+    // (the AOVs); `trace` receives the terms of its hit's local model.
+    glm::dvec3 radiance(const Ray& ray, int level, const Medium& medium,
+                        std::optional<WorldHit>* firstHit = nullptr,
+                        PixelTrace* trace = nullptr) const;
+
+    // The fraction of light at `lightPosition` that reaches `origin` (a
+    // feeler origin already off the surface): the product of the
+    // transparencies of the objects the feeler meets before the light, each
+    // object once (a boolean is one object, with the transparency of the
+    // operand met first); 0 from the first opaque one.
+    glm::dvec3 lightThrough(const glm::dvec3& origin, const glm::dvec3& lightPosition) const;
+
+private:
+    glm::dvec3 localShade(const WorldHit& hit, const Material& material, const glm::dvec3& v,
+                          const glm::dvec3& k, PixelTrace* trace) const;
+
+    const Scene& scene_;
+    const SceneIntersector& intersector_;
+    int maxDepth_;
+};
+
+}  // namespace vkray::reference

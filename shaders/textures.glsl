@@ -1,0 +1,73 @@
+// Texture colour k(p) at a hit (README "Textures"): it scales the ambient
+// and diffuse reflection coefficients. Evaluated at the point g in the
+// generic space of the surface that was hit (for CSG, the primitive's).
+// VKRAY_TEXTURES compiles the solid textures in, VKRAY_PIXMAPS the image one.
+
+const float TEXTURE_PI = 3.14159265358979;
+
+#if VKRAY_PIXMAPS
+layout(std430, set = 0, binding = BINDING_PIXMAPS) readonly buffer PixmapBlock { GpuPixmap pixmaps[]; };
+layout(std430, set = 0, binding = BINDING_TEXELS) readonly buffer TexelBlock { float texels[]; };
+
+// The angle about the generic z axis as u in [0, 1].
+float aroundZ(vec3 g) { return 0.5 + atan(g.y, g.x) / (2.0 * TEXTURE_PI); }
+
+// (u, v) of generic point g on a surface of `kind`; genericNormal tells a
+// cylinder's caps (normal along z) from its wall.
+vec2 surfaceUv(uint kind, vec3 g, vec3 genericNormal) {
+    switch (kind) {
+    case KIND_SPHERE: return vec2(aroundZ(g), 0.5 + asin(clamp(g.z, -1.0, 1.0)) / TEXTURE_PI);
+    case KIND_PLANE: return fract(g.xy / 2.0 + 0.5);  // one tile every 2 units
+    case KIND_SQUARE: return (g.xy + 1.0) / 2.0;
+    case KIND_TAPERED_CYLINDER:
+        if (genericNormal.x == 0.0 && genericNormal.y == 0.0) return (g.xy + 1.0) / 2.0;
+        return vec2(aroundZ(g), g.z);
+    case KIND_CUBE: {
+        // The face of the axis with the largest |g|; the other two in order.
+        vec3 a = abs(g);
+        if (a.x >= a.y && a.x >= a.z) return (g.yz + 1.0) / 2.0;
+        if (a.y >= a.z) return (g.xz + 1.0) / 2.0;
+        return (g.xy + 1.0) / 2.0;
+    }
+    case KIND_TORUS:
+        return vec2(aroundZ(g), 0.5 + atan(g.z, sqrt(dot(g.xy, g.xy)) - TORUS_MAJOR_RADIUS) /
+                                          (2.0 * TEXTURE_PI));
+    default: return fract((g.xy + 1.0) / 2.0);  // meshes
+    }
+}
+
+// The nearest texel at (u, v): u wraps, v is clamped, v = 1 is the top row.
+vec3 pixmapTexel(uint slot, vec2 uv) {
+    uvec4 image = pixmaps[slot].image;
+    int width = int(image.y), height = int(image.z);
+    float u = fract(uv.x), v = clamp(uv.y, 0.0, 1.0);
+    int x = clamp(int(floor(u * float(width))), 0, width - 1);
+    int y = clamp(int(floor((1.0 - v) * float(height))), 0, height - 1);
+    uint first = image.x + 3u * (uint(y) * uint(width) + uint(x));
+    return vec3(texels[first], texels[first + 1u], texels[first + 2u]);
+}
+#endif
+
+// k(p) for the surface GpuObject `surface` at generic point g.
+vec3 textureColor(GpuObject surface, vec3 g, vec3 genericNormal) {
+    uint code = floatBitsToUint(surface.material.w);
+    vec4 parameters = surface.texture;
+#if VKRAY_TEXTURES
+    if (code == TEXTURE_CHECKERBOARD) {
+        // Cells of side `size`, shifted half a cell so that the generic
+        // shapes' faces (0 and +-1) lie inside cells, not on their borders.
+        vec3 cell = floor(g / parameters.x + 0.5);
+        bool odd = ((int(cell.x) + int(cell.y) + int(cell.z)) & 1) != 0;
+        return odd ? parameters.yzw : vec3(1.0);
+    }
+    if (code == TEXTURE_WOOD) {
+        bool odd = (int(floor(sqrt(dot(g.xy, g.xy)) / parameters.x)) & 1) != 0;
+        return odd ? parameters.yzw : vec3(1.0);
+    }
+#endif
+#if VKRAY_PIXMAPS
+    if (code == TEXTURE_IMAGE)
+        return pixmapTexel(floatBitsToUint(parameters.x), surfaceUv(surface.shape.x, g, genericNormal));
+#endif
+    return vec3(1.0);
+}
