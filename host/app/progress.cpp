@@ -48,13 +48,18 @@ ProgressDisplay::~ProgressDisplay() {
     if (shown_) out_ << "\n" << std::flush;
 }
 
-std::string ProgressDisplay::figures(std::size_t done, std::size_t total, double elapsed) const {
+std::string ProgressDisplay::figures(std::size_t done, std::size_t total, double now) const {
+    const double elapsed = now - start_;
     const double rate = elapsed > 0 ? double(done) / elapsed : 0;
     char text[96];
     std::snprintf(text, sizeof text, "%.2f Mrays/s, ", rate / 1e6);
     std::string result = text;
     if (done >= total) return result + "done in " + durationText(elapsed);
-    return result + (rate > 0 ? durationText(double(total - done) / rate) : std::string("?")) +
+    double recentRate = rate;
+    if (firstPieceTime_ >= 0 && done > firstPieceDone_ && now > firstPieceTime_)
+        recentRate = double(done - firstPieceDone_) / (now - firstPieceTime_);
+    return result +
+           (recentRate > 0 ? durationText(double(total - done) / recentRate) : std::string("?")) +
            " left";
 }
 
@@ -67,6 +72,10 @@ void ProgressDisplay::update(std::size_t done, std::size_t total) {
     if (done < done_) return;
     done_ = done;
     total_ = total;
+    if (firstPieceTime_ < 0 && done > 0) {
+        firstPieceTime_ = now;
+        firstPieceDone_ = done;
+    }
     const double elapsed = now - start_;
     if (elapsed < kQuietStart) return;
     const int percent = int(100.0 * double(done) / double(total));
@@ -76,7 +85,7 @@ void ProgressDisplay::update(std::size_t done, std::size_t total) {
         lastDecile_ = percent / 10;
         lastShown_ = now;
         out_ << label_ << ": " << percent << "% (" << done << " of " << total << " rays), "
-             << figures(done, total, elapsed) << "\n" << std::flush;
+             << figures(done, total, now) << "\n" << std::flush;
         return;
     }
     if (shown_ && now - lastShown_ < kRedrawInterval && done < total) return;
@@ -88,7 +97,7 @@ void ProgressDisplay::update(std::size_t done, std::size_t total) {
     std::snprintf(head, sizeof head, "%3d%% [", percent);
     // \r and "erase to the end of the line": the line is redrawn in place.
     out_ << "\r\x1b[K" << label_ << " " << head << std::string(size_t(filled), '#')
-         << std::string(size_t(kBarWidth - filled), '-') << "] " << figures(done, total, elapsed)
+         << std::string(size_t(kBarWidth - filled), '-') << "] " << figures(done, total, now)
          << std::flush;
 }
 

@@ -36,7 +36,7 @@ public:
     void finish();
 
 private:
-    std::string figures(std::size_t done, std::size_t total, double elapsed) const;
+    std::string figures(std::size_t done, std::size_t total, double now) const;
 
     std::ostream& out_;
     Style style_;
@@ -44,6 +44,11 @@ private:
     Clock clock_;
     std::mutex mutex_;
     double start_ = -1;     // the first update's time
+    // The first piece of work done: the time left is estimated from the rate
+    // after it, since the first piece also pays for start-up (lavapipe
+    // compiles the shader at the first dispatch).
+    double firstPieceTime_ = -1;
+    std::size_t firstPieceDone_ = 0;
     double lastShown_ = 0;  // when the last line was drawn or printed
     int lastDecile_ = -1;   // Lines: the 10 % step of the last line printed
     bool shown_ = false;    // Terminal: a line is open

@@ -55,6 +55,24 @@ TEST(Progress, LinesAtMostOneASecondAndOnePerTenPercent) {
     EXPECT_EQ(lines[2], "gpu render: 100% (1000000 of 1000000 rays), 0.25 Mrays/s, done in 4 s");
 }
 
+TEST(Progress, TimeLeftDiscountsTheSlowFirstPiece) {
+    // The first tile takes 2 s (lavapipe compiles the shader then), the next
+    // 100 000 rays 1 s: 890 000 left at 100 000 a second is 9 s, not the 24 s
+    // the average since the start would say.
+    double now = 0;
+    std::ostringstream out;
+    ProgressDisplay display(out, ProgressDisplay::Style::Lines, "gpu render",
+                            [&now] { return now; });
+    display.update(0, 1'000'000);
+    now = 2;
+    display.update(10'000, 1'000'000);
+    now = 3;
+    display.update(110'000, 1'000'000);
+    EXPECT_EQ(out.str(),
+              "gpu render: 1% (10000 of 1000000 rays), 0.01 Mrays/s, 3 min 18 s left\n"
+              "gpu render: 11% (110000 of 1000000 rays), 0.04 Mrays/s, 9 s left\n");
+}
+
 TEST(Progress, ShortRenderShowsNothing) {
     double now = 0;
     std::ostringstream out;
