@@ -1,6 +1,7 @@
 #include "app/commands.h"
 
 #include "app/pixel_report.h"
+#include "app/progress.h"
 #include "app/watch.h"
 #include "gpu/context.h"
 #include "gpu/gpu_tracer.h"
@@ -10,6 +11,7 @@
 #include "reference/reference_tracer.h"
 #include "scene/camera.h"
 #include "scene/error.h"
+#include "scene/render_progress.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 
@@ -77,6 +79,8 @@ Camera chooseCamera(const Scene& scene, const Options& o) {
     if (o.look) camera.look = *o.look;
     if (o.up) camera.up = *o.up;
     if (o.fov) camera.fovDegrees = *o.fov;
+    // Errors in the camera then name the options rather than the scene's line.
+    if (o.eye || o.look || o.up) camera.loc = FileLoc{};
     return camera;
 }
 
@@ -125,11 +129,21 @@ void reportShader(const gpu::GpuRenderStats& stats, const Options& o, std::ostre
     out << "wrote " << path << " (spirv-dis " << path << " disassembles it)\n";
 }
 
+// The progress display's callback; it also stops the render on Ctrl-C.
+RenderProgress progressTo(ProgressDisplay& display) {
+    return [&display](std::size_t done, std::size_t total) {
+        display.update(done, total);
+        return !stopRequested();
+    };
+}
+
 Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
-                const Options& o, GpuSession& session, std::ostream& out) {
+                const Options& o, GpuSession& session, std::ostream& out, std::ostream& err) {
     gpu::GpuTracer& tracer = session.tracerFor(o, out);
     gpu::GpuRenderStats stats;
-    Frame frame = tracer.render(scene, camera, settings, &stats);
+    ProgressDisplay display(err, ProgressDisplay::styleForStderr(o.quiet), "gpu render");
+    Frame frame = tracer.render(scene, camera, settings, &stats, progressTo(display));
+    display.finish();
     reportShader(stats, o, out);
     out << "gpu render: " << fixed(stats.renderSeconds, 3) << " s, " << stats.tiles << " tiles, "
         << fixed(mrays(stats.rays, stats.renderSeconds), 2) << " Mrays/s\n";
@@ -138,10 +152,15 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
 }
 
 Frame renderCpu(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
-                const Options& o, std::ostream& out) {
+                const Options& o, std::ostream& out, std::ostream& err) {
     const auto start = Clock::now();
     const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    Frame frame = reference::render(scene, camera, settings, {threads});
+    ProgressDisplay display(err, ProgressDisplay::styleForStderr(o.quiet), "cpu reference");
+    reference::ReferenceOptions options;
+    options.threads = threads;
+    options.progress = progressTo(display);
+    Frame frame = reference::render(scene, camera, settings, options);
+    display.finish();
     const double seconds = secondsSince(start);
     out << "cpu reference render: " << fixed(seconds, 3) << " s, " << threads << " threads, "
         << fixed(mrays(primaryRays(settings), seconds), 2) << " Mrays/s\n";
@@ -149,15 +168,16 @@ Frame renderCpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
 }
 
 // Compares colour (and ids) of two frames or files; prints the report.
+// The diff image, if asked for, is staged in `files`.
 bool compareAndReport(const Image& a, const Image& b, const Image* idsA, const Image* idsB,
                       const CompareOptions& options, const std::string& diffPath,
-                      std::ostream& out) {
+                      StagedFiles& files, std::ostream& out) {
     CompareResult result = compareImages(a, b, options);
     if (idsA && idsB) {
         compareIds(*idsA, *idsB, result);
         result.passed = result.passed && result.idMismatchPercent <= options.failPercent;
     }
-    if (!diffPath.empty()) writeImage(diffPath, diffImage(a, b));
+    if (!diffPath.empty()) files.stageImage(diffPath, diffImage(a, b));
     out << formatCompareReport(result, options);
     return result.passed;
 }
@@ -187,27 +207,32 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
         << (o.block > 1 ? ", block " + std::to_string(o.block) : std::string())
         << (o.spp > 1 ? ", " + std::to_string(o.spp) + " spp, seed " + std::to_string(o.seed)
                       : std::string())
-        << "\n";
+        << std::endl;  // before the progress display starts
 
-    Frame frame = o.cpu ? renderCpu(scene, camera, settings, o, out)
-                        : renderGpu(scene, camera, settings, o, session, out);
+    Frame frame = o.cpu ? renderCpu(scene, camera, settings, o, out, err)
+                        : renderGpu(scene, camera, settings, o, session, out, err);
     bool passed = true;
+    // Every output is written in full beside its destination, then all are
+    // renamed into place together: a failed or interrupted run changes none.
+    StagedFiles files;
     if (o.check) {
-        Frame reference = renderCpu(scene, camera, settings, o, out);
+        Frame reference = renderCpu(scene, camera, settings, o, out, err);
         const CompareOptions tolerance{o.failThreshold.value_or(kCheckFailThreshold),
                                        o.failPercent.value_or(kCheckFailPercent)};
         const Image idsGpu = idImage(frame), idsCpu = idImage(reference);
         out << "gpu vs cpu reference:\n";
         passed = compareAndReport(colorImage(frame), colorImage(reference), &idsGpu, &idsCpu,
-                                  tolerance, o.diffPath, out);
+                                  tolerance, o.diffPath, files, out);
     }
 
-    writeImage(output, colorImage(frame));
+    if (stopRequested()) throw Interrupted();
+    files.stageImage(output, colorImage(frame));
+    if (!o.aovPrefix.empty()) files.stageAovs(o.aovPrefix, frame);
+    if (stopRequested()) throw Interrupted();
+    files.commit();
+    if (!o.diffPath.empty()) out << "wrote " << o.diffPath << "\n";
     out << "wrote " << output << "\n";
-    if (!o.aovPrefix.empty()) {
-        writeAovs(o.aovPrefix, frame);
-        out << "wrote " << o.aovPrefix << ".depth.pfm, .normal.pfm, .id.pfm\n";
-    }
+    if (!o.aovPrefix.empty()) out << "wrote " << o.aovPrefix << ".depth.pfm, .normal.pfm, .id.pfm\n";
     return passed ? 0 : 2;
 }
 
@@ -230,7 +255,6 @@ std::vector<std::string> sceneInputs(const Options& o) {
 int runWatch(const Options& o, std::ostream& out, std::ostream& err) {
     GpuSession session;
     const std::string shaders = o.cpu ? std::string() : shaderDirectory(o);
-    const StopOnSignal stopOnSignal;
     for (bool first = true; !stopRequested(); first = false) {
         const auto start = Clock::now();
         try {
@@ -254,6 +278,9 @@ int runWatch(const Options& o, std::ostream& out, std::ostream& err) {
 }
 
 int runRender(const Options& o, std::ostream& out, std::ostream& err) {
+    // Ctrl-C and SIGTERM set a flag: the render stops between tiles (rows on
+    // the CPU) and writes nothing (Interrupted), or --watch stops waiting.
+    const StopOnSignal stopOnSignal;
     if (o.watch) return runWatch(o, out, err);
     GpuSession session;
     return renderOnce(o, session, out, err);
@@ -315,10 +342,16 @@ int runCompare(const Options& o, std::ostream& out) {
             out << "object ids from " << idsPathA << " and " << idsPathB << "\n";
         }
     }
-    if (idsPathA.empty())
-        return compareAndReport(a, b, nullptr, nullptr, tolerance, o.diffPath, out) ? 0 : 2;
-    const Image idsA = readImage(idsPathA), idsB = readImage(idsPathB);
-    return compareAndReport(a, b, &idsA, &idsB, tolerance, o.diffPath, out) ? 0 : 2;
+    StagedFiles files;
+    bool passed = false;
+    if (idsPathA.empty()) {
+        passed = compareAndReport(a, b, nullptr, nullptr, tolerance, o.diffPath, files, out);
+    } else {
+        const Image idsA = readImage(idsPathA), idsB = readImage(idsPathB);
+        passed = compareAndReport(a, b, &idsA, &idsB, tolerance, o.diffPath, files, out);
+    }
+    files.commit();
+    return passed ? 0 : 2;
 }
 
 int runDevices(std::ostream& out) {
@@ -334,6 +367,8 @@ int runDevices(std::ostream& out) {
             << "\n   compute " << (d.hasCompute ? "yes" : "no") << ", shaderFloat64 "
             << (d.shaderFloat64 ? "yes" : "no") << ", subgroup size " << d.subgroupSize
             << ", max storage buffer " << d.maxStorageBufferRange << " bytes"
+            << ", max uniform buffer " << d.maxUniformBufferRange << " bytes"
+            << ", memory heap " << d.memoryHeapBytes << " bytes"
             << ", max workgroup size " << d.maxWorkgroupSize[0] << "x" << d.maxWorkgroupSize[1]
             << "x" << d.maxWorkgroupSize[2] << ", max workgroup count " << d.maxWorkgroupCount[0]
             << "x" << d.maxWorkgroupCount[1] << "x" << d.maxWorkgroupCount[2] << "\n";
@@ -360,6 +395,9 @@ int vkrayMain(int argc, char** argv) {
     try {
         const Options options = parseOptions(std::vector<std::string>(argv + 1, argv + argc));
         return runCommand(options, std::cout, std::cerr);
+    } catch (const Interrupted&) {
+        std::cerr << "vkray: interrupted; nothing was written (existing files are as they were)\n";
+        return 130;
     } catch (const Error& e) {
         printError(e, std::cerr);
     } catch (const std::bad_alloc&) {

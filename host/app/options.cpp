@@ -102,6 +102,7 @@ const std::map<std::string, Flag>& renderFlags() {
          }}},
         {"--dump-spirv", {true, [](Options& o, const std::string& v) { o.dumpSpirvDirectory = v; }}},
         {"--watch", {false, [](Options& o, const std::string&) { o.watch = true; }}},
+        {"--quiet", {false, [](Options& o, const std::string&) { o.quiet = true; }}},
         {"--all", {false, [](Options& o, const std::string&) { o.everyVariant = true; }}},
         {"--diff", {true, [](Options& o, const std::string& v) { o.diffPath = v; }}},
         {"--fail", {true, [](Options& o, const std::string& v) {
@@ -184,8 +185,12 @@ render options:
   --watch               re-render when the scene, a file it reads or a shader changes
   -D NAME=VALUE         define for the shader compile (repeatable)
   --dump-spirv DIR      write the SPIR-V of the variant used to DIR
+  --quiet               no progress display on stderr
 
-exit status: 0 success, 1 error, 2 images differ beyond tolerance
+Ctrl-C (SIGINT, SIGTERM) stops a render between tiles: nothing is written,
+existing files stay as they were, exit status 130.
+
+exit status: 0 success, 1 error, 2 images differ beyond tolerance, 130 interrupted
 )";
 }
 

@@ -45,6 +45,7 @@ struct Options {
     std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE
     std::string dumpSpirvDirectory;                            // --dump-spirv DIR
     bool watch = false;                                        // --watch
+    bool quiet = false;                                        // --quiet: no progress display
 
     bool everyVariant = false;  // shaders check --all
 

@@ -3,6 +3,7 @@
 #include "scene/error.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 namespace vkray::gpu {
@@ -49,7 +50,8 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& device, int index) {
     info.index = index;
     auto chain = device.getProperties2<vk::PhysicalDeviceProperties2,
                                        vk::PhysicalDeviceDriverProperties,
-                                       vk::PhysicalDeviceSubgroupProperties>();
+                                       vk::PhysicalDeviceSubgroupProperties,
+                                       vk::PhysicalDeviceMaintenance3Properties>();
     const auto& props = chain.get<vk::PhysicalDeviceProperties2>().properties;
     const auto& driver = chain.get<vk::PhysicalDeviceDriverProperties>();
     info.subgroupSize = chain.get<vk::PhysicalDeviceSubgroupProperties>().subgroupSize;
@@ -59,9 +61,21 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& device, int index) {
     info.driverName = driver.driverName.data();
     info.driverInfo = driver.driverInfo.data();
     info.apiVersion = props.apiVersion;
-    info.hasCompute = computeQueueFamily(device).has_value();
+    info.hasCompute =
+        computeQueueFamily(device).has_value() && injectedFault() != Fault::NoCompute;
     info.shaderFloat64 = device.getFeatures().shaderFloat64;
     info.maxStorageBufferRange = props.limits.maxStorageBufferRange;
+    info.maxUniformBufferRange = props.limits.maxUniformBufferRange;
+    info.maxMemoryAllocationSize =
+        chain.get<vk::PhysicalDeviceMaintenance3Properties>().maxMemoryAllocationSize;
+    // vkray's buffers are host-visible (HostBuffer): their heap is the one that counts.
+    const vk::PhysicalDeviceMemoryProperties memory = device.getMemoryProperties();
+    for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
+        if (memory.memoryTypes[i].propertyFlags & vk::MemoryPropertyFlagBits::eHostVisible) {
+            info.memoryHeapBytes = memory.memoryHeaps[memory.memoryTypes[i].heapIndex].size;
+            break;
+        }
+    }
     for (int i = 0; i < 3; ++i) {
         info.maxWorkgroupCount[i] = props.limits.maxComputeWorkGroupCount[i];
         info.maxWorkgroupSize[i] = props.limits.maxComputeWorkGroupSize[i];
@@ -113,6 +127,41 @@ std::string loaderFailure(const std::exception& e) {
 }
 
 }  // namespace
+
+Fault injectedFault() {
+    const char* name = std::getenv("VKRAY_FAULT");
+    if (!name || !*name) return Fault::None;
+    const std::string fault = name;
+    if (fault == "no-compute") return Fault::NoCompute;
+    if (fault == "device-lost") return Fault::DeviceLost;
+    if (fault == "out-of-device-memory") return Fault::OutOfDeviceMemory;
+    throw Error("VKRAY_FAULT='" + fault +
+                "' is not a fault vkray can inject (no-compute, device-lost, "
+                "out-of-device-memory); it is a test hook: unset it");
+}
+
+void explainVulkanFailure(const vk::SystemError& failure, const DeviceInfo& device) {
+    const std::string on = " on " + device.name + " ";
+    switch (vk::Result(failure.code().value())) {
+    case vk::Result::eErrorDeviceLost:
+        throw Error("the Vulkan device was lost during the render" + on +
+                    "(VK_ERROR_DEVICE_LOST: the driver crashed or reset the GPU, e.g. after a "
+                    "dispatch ran too long); nothing was written. Run again, check the driver "
+                    "with `vkray devices`, or render with --cpu");
+    case vk::Result::eErrorOutOfDeviceMemory:
+        throw Error("out of device memory during the render" + on +
+                    "(VK_ERROR_OUT_OF_DEVICE_MEMORY); nothing was written. Close other programs "
+                    "that use the GPU, use fewer objects or smaller meshes, or render with --cpu");
+    case vk::Result::eErrorOutOfHostMemory:
+        throw Error("out of host memory during the render" + on +
+                    "(VK_ERROR_OUT_OF_HOST_MEMORY); nothing was written. Use fewer objects or "
+                    "smaller meshes, or render with --cpu");
+    default:
+        throw Error(std::string("Vulkan failed during the render") + on + "(" + failure.what() +
+                    "); nothing was written. Check the driver with `vkray devices`, or render "
+                    "with --cpu");
+    }
+}
 
 std::string DeviceInfo::apiVersionString() const {
     return std::to_string(VK_API_VERSION_MAJOR(apiVersion)) + "." +
@@ -197,7 +246,8 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     } else if (!devices[size_t(chosen)].hasCompute ||
                devices[size_t(chosen)].apiVersion < VK_API_VERSION_1_2) {
         throw Error("--device " + std::to_string(chosen) + " (" + devices[size_t(chosen)].name +
-                    ") has no compute queue or lacks Vulkan 1.2; choose another with --device");
+                    ") has no compute queue or lacks Vulkan 1.2; choose another with --device "
+                    "(`vkray devices` lists them), or render with --cpu");
     }
     s.physicalDevice = std::move(physical[size_t(chosen)]);
     s.info = devices[size_t(chosen)];
@@ -220,6 +270,8 @@ int Context::validationMessages() const { return impl_->validationMessages.load(
 
 HostBuffer::HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUsageFlags usage)
     : size_(size), device_(&context.device) {
+    if (injectedFault() == Fault::OutOfDeviceMemory)
+        throw vk::OutOfDeviceMemoryError("vkAllocateMemory (injected by VKRAY_FAULT)");
     buffer_ = vk::raii::Buffer(context.device, {{}, size, usage, vk::SharingMode::eExclusive});
     auto requirements = buffer_.getMemoryRequirements();
     auto properties = context.physicalDevice.getMemoryProperties();

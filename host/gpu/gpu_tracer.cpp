@@ -1,6 +1,7 @@
 #include "gpu/gpu_tracer.h"
 
 #include "gpu/context_impl.h"
+#include "gpu/device_limits.h"
 #include "gpu/gpu_scene.h"
 #include "gpu/shader_variant.h"
 #include "scene/error.h"
@@ -36,16 +37,44 @@ template <typename T>
 std::unique_ptr<HostBuffer> makeBuffer(Context::Impl& c, const std::vector<T>& items,
                                        vk::BufferUsageFlags usage) {
     // Vulkan forbids empty buffers: an empty array still gets one element.
+    // (Sizes were checked against the device's limits by checkBufferNeeds.)
     const vk::DeviceSize bytes = sizeof(T) * std::max<size_t>(items.size(), 1);
-    if (bytes > c.info.maxStorageBufferRange)
-        throw Error("the scene needs a " + std::to_string(bytes) + "-byte buffer, more than " +
-                    c.info.name + " allows (" + std::to_string(c.info.maxStorageBufferRange) +
-                    " bytes); use a smaller scene or another --device");
     auto buffer = std::make_unique<HostBuffer>(c, bytes, usage);
     if (!items.empty()) buffer->upload(items.data(), sizeof(T) * items.size());
     return buffer;
 }
 
+template <typename T>
+BufferNeed need(const char* what, const std::vector<T>& items, const char* advice) {
+    return {what, items.size(), sizeof(T), false, advice};
+}
+
+// Every buffer TracePass allocates for this variant, before it allocates any.
+std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures& features,
+                                    size_t tilePixels, size_t debugEntries) {
+    const char* fewerObjects = "Use fewer objects";
+    const char* smallerMeshes = "Use fewer or smaller meshes";
+    std::vector<BufferNeed> needs{
+        {"frame parameters", 1, sizeof(FrameParams), true, "Use another --device"},
+        need("objects", packed.objects, fewerObjects),
+        need("lights", packed.lights, "Use fewer lights"),
+        {"tile pixels", tilePixels, sizeof(GpuPixel), false, "Use a smaller --block"},
+    };
+    if (features.debugPixel)
+        needs.push_back({"debug entries", debugEntries, sizeof(GpuDebugEntry), false, fewerObjects});
+    if (features.objectBvh) {
+        needs.push_back(need("object BVH nodes", packed.objectNodes, fewerObjects));
+        needs.push_back(need("object BVH entries", packed.objectIndex, fewerObjects));
+    }
+    if (features.kinds[KIND_MESH]) {
+        needs.push_back(need("meshes", packed.meshes, smallerMeshes));
+        needs.push_back(need("mesh BVH nodes", packed.meshNodes, smallerMeshes));
+        needs.push_back(need("triangles", packed.triangles, smallerMeshes));
+    }
+    if (features.kinds[KIND_BOOLEAN])
+        needs.push_back(need("CSG nodes", packed.csgNodes, "Use fewer or simpler booleans"));
+    return needs;
+}
 
 // Everything one render needs on the device: the scene's buffers, the
 // descriptor set and a command buffer; dispatchTile() traces one tile and
@@ -57,6 +86,9 @@ public:
               int tile)
         : c_(c), pipeline_(pipeline) {
         const GpuScene packed = packScene(scene, features);
+        const size_t debugEntries = 4 + scene.objects.size() + scene.lights.size();
+        checkBufferNeeds(bufferNeeds(packed, features, size_t(tile) * size_t(tile), debugEntries),
+                         deviceLimits(c.info));
         const std::vector<FrameParams> frameParams{packFrame(scene, packed, camera, settings)};
         using Usage = vk::BufferUsageFlagBits;
         // Only the buffers this variant reads (the same list as its bindings).
@@ -68,8 +100,7 @@ public:
         if (features.debugPixel) {
             // A header and one entry per object and per light, zeroed.
             static_assert(sizeof(GpuDebugHeader) == 4 * sizeof(GpuDebugEntry));
-            const size_t entries = scene.objects.size() + scene.lights.size();
-            add(BINDING_DEBUG, makeBuffer(c, std::vector<GpuDebugEntry>(4 + entries),
+            add(BINDING_DEBUG, makeBuffer(c, std::vector<GpuDebugEntry>(debugEntries),
                                           Usage::eStorageBuffer));
         }
         if (features.objectBvh) {
@@ -135,6 +166,8 @@ public:
         c_.queue.submit(vk::SubmitInfo({}, {}, *commands_), *fence_);
         if (c_.device.waitForFences(*fence_, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
             throw Error("the GPU did not finish a tile");
+        if (injectedFault() == Fault::DeviceLost)  // after the wait: nothing still runs
+            throw vk::DeviceLostError("vkWaitForFences (injected by VKRAY_FAULT)");
         c_.device.resetFences(*fence_);
         buffer(BINDING_PIXELS).invalidate();
         if (buffers_.count(BINDING_DEBUG)) buffer(BINDING_DEBUG).invalidate();
@@ -212,7 +245,8 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
 }
 
 Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
-                        const RenderSettings& settings, GpuRenderStats* stats) {
+                        const RenderSettings& settings, GpuRenderStats* stats,
+                        const RenderProgress& progress) try {
     if (settings.width < 1 || settings.height < 1 || settings.block < 1)
         throw Error("render: width, height and block must be at least 1");
     GpuRenderStats local;
@@ -223,12 +257,14 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
         throw Error("render: samples per pixel must be from 1 to " + std::to_string(kMaxSpp));
     const ShaderFeatures features = featuresOf(scene, settings, options_.allFeatures);
     const Pipeline& pipeline = pipelineFor(features, st);
-    // Tiles hold whole blocks, so a block never straddles two dispatches, and
-    // shrink with the samples per pixel, so that no dispatch runs long.
+    // Tiles hold whole blocks, so a block never straddles two dispatches;
+    // they shrink with the samples per pixel, so that no dispatch runs long,
+    // and where the device's buffer or workgroup limits need it.
     const int block = settings.block;
     const int side = std::max(std::min(16, options_.tileSize),
                               options_.tileSize / int(std::ceil(std::sqrt(double(settings.spp)))));
-    const int tile = std::max(block, side / block * block);
+    const int tile = fitTileSide(std::max(block, side / block * block), block, sizeof(GpuPixel),
+                                 WORKGROUP_X, WORKGROUP_Y, deviceLimits(context_.device()));
     TracePass pass(context_.impl(), pipeline, features, scene, camera, settings, tile);
     st.setupSeconds = secondsSince(setupStart) - st.shader.seconds;
 
@@ -236,6 +272,9 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
     const auto renderStart = Clock::now();
     st.tiles = 0;
     st.rays = 0;
+    const size_t totalRays = size_t((settings.width + block - 1) / block) *
+                             size_t((settings.height + block - 1) / block);
+    if (progress && !progress(0, totalRays)) throw Interrupted();
     for (int ty = 0; ty < settings.height; ty += tile) {
         for (int tx = 0; tx < settings.width; tx += tile) {
             const int w = std::min(tile, settings.width - tx);
@@ -255,15 +294,18 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
             st.rays += size_t((w + block - 1) / block) * size_t((h + block - 1) / block) *
                        size_t(settings.spp);
             ++st.tiles;
+            if (progress && !progress(st.rays, totalRays)) throw Interrupted();
         }
     }
     st.renderSeconds = secondsSince(renderStart);
     return frame;
+} catch (const vk::SystemError& failure) {
+    explainVulkanFailure(failure, context_.device());
 }
 
 PixelTrace GpuTracer::tracePixel(const Scene& scene, const CameraBasis& camera,
                                  const RenderSettings& settings, int x, int y,
-                                 GpuRenderStats* stats) {
+                                 GpuRenderStats* stats) try {
     if (x < 0 || y < 0 || x >= settings.width || y >= settings.height)
         throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                     ") is outside the " + std::to_string(settings.width) + "x" +
@@ -308,6 +350,8 @@ PixelTrace GpuTracer::tracePixel(const Scene& scene, const CameraBasis& camera,
     }
     trace.color = toDvec3(header.color);
     return trace;
+} catch (const vk::SystemError& failure) {
+    explainVulkanFailure(failure, context_.device());
 }
 
 }  // namespace vkray::gpu

@@ -9,6 +9,7 @@
 #include "image/frame.h"
 #include "image/pixel_trace.h"
 #include "scene/camera.h"
+#include "scene/render_progress.h"
 #include "scene/scene.h"
 
 #include <cstddef>
@@ -43,8 +44,12 @@ public:
 
     ~GpuTracer();
 
+    // Checks the scene against the device's limits before allocating (an
+    // Error naming the count, the limit and what to do), then traces it tile
+    // by tile; `progress` hears after each tile and can stop the render
+    // (Interrupted). A device lost or out of memory is an Error saying so.
     Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
-                 GpuRenderStats* stats = nullptr);
+                 GpuRenderStats* stats = nullptr, const RenderProgress& progress = nullptr);
 
     // `vkray pixel`: traces pixel (x, y) alone with the debug-pixel variant,
     // which records every object test and shading term.

@@ -4,6 +4,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 #include <sys/stat.h>
+#include <pthread.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -358,9 +359,9 @@ Image idImage(const Frame& frame) {
 }
 
 void writeImage(const std::string& path, const Image& image) {
-    const Format format = formatOf(path);
-    requireWritable(path, image);
-    writeFileAtomically(path, format == Format::Png ? encodePng(path, image) : encodePfm(image));
+    StagedFiles files;
+    files.stageImage(path, image);
+    files.commit();
 }
 
 Image decodeImage(const std::string& bytes, const std::string& path) {
@@ -374,34 +375,92 @@ Image readImage(const std::string& path) {
 }
 
 void writeFileAtomically(const std::string& path, const std::string& bytes) {
+    StagedFiles files;
+    files.stage(path, bytes);
+    files.commit();
+}
+
+void writeAovs(const std::string& prefix, const Frame& frame) {
+    StagedFiles files;
+    files.stageAovs(prefix, frame);
+    files.commit();
+}
+
+// ---- staged files ------------------------------------------------------------
+
+StagedFiles::~StagedFiles() {
+    for (const auto& file : staged_) ::unlink(file.first.c_str());
+    release();
+}
+
+void StagedFiles::release() {
+    if (holding_) ::pthread_sigmask(SIG_SETMASK, &previousMask_, nullptr);
+    holding_ = false;
+}
+
+void StagedFiles::stage(const std::string& path, const std::string& bytes) {
+    if (!holding_) {
+        sigset_t stopSignals;
+        sigemptyset(&stopSignals);
+        for (int signal : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&stopSignals, signal);
+        holding_ = ::pthread_sigmask(SIG_BLOCK, &stopSignals, &previousMask_) == 0;
+    }
+    // A folder in the way would fail only at commit(), after other files of
+    // the set were renamed: refuse it now, while nothing has changed.
+    struct stat destination {};
+    if (::stat(path.c_str(), &destination) == 0 && S_ISDIR(destination.st_mode))
+        throw Error("cannot write " + path + ": " + errnoText(EISDIR));
     const std::string temporary = temporaryPathFor(path);
     // O_EXCL: never write through a stale temporary or a link someone left there.
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd < 0) throw Error("cannot write " + path + ": " + errnoText(errno));
+    staged_.emplace_back(temporary, path);  // from here on, the destructor removes it
 
-    auto failAndCleanUp = [&](int error, bool closeFirst) {
-        if (closeFirst) ::close(fd);
-        ::unlink(temporary.c_str());
+    const auto fail = [&](int error) {
         throw Error("cannot write " + path + ": " + errnoText(error));
     };
     size_t written = 0;
     while (written < bytes.size()) {
         const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
         if (n < 0 && errno == EINTR) continue;
-        if (n < 0) failAndCleanUp(errno, true);
+        if (n < 0) {
+            const int error = errno;
+            ::close(fd);
+            fail(error);
+        }
         written += size_t(n);
     }
     // fsync before rename: after a crash the destination is the old or the new
     // file, never a renamed but still empty one.
-    if (::fsync(fd) != 0) failAndCleanUp(errno, true);
-    if (::close(fd) != 0) failAndCleanUp(errno, false);
-    if (::rename(temporary.c_str(), path.c_str()) != 0) failAndCleanUp(errno, false);
+    if (::fsync(fd) != 0) {
+        const int error = errno;
+        ::close(fd);
+        fail(error);
+    }
+    if (::close(fd) != 0) fail(errno);
 }
 
-void writeAovs(const std::string& prefix, const Frame& frame) {
-    writeImage(prefix + ".depth.pfm", depthImage(frame));
-    writeImage(prefix + ".normal.pfm", normalImage(frame));
-    writeImage(prefix + ".id.pfm", idImage(frame));
+void StagedFiles::stageImage(const std::string& path, const Image& image) {
+    const Format format = formatOf(path);
+    requireWritable(path, image);
+    stage(path, format == Format::Png ? encodePng(path, image) : encodePfm(image));
+}
+
+void StagedFiles::stageAovs(const std::string& prefix, const Frame& frame) {
+    stageImage(prefix + ".depth.pfm", depthImage(frame));
+    stageImage(prefix + ".normal.pfm", normalImage(frame));
+    stageImage(prefix + ".id.pfm", idImage(frame));
+}
+
+void StagedFiles::commit() {
+    // Renames within one folder: each is atomic, and none can run out of space.
+    while (!staged_.empty()) {
+        const auto& [temporary, path] = staged_.front();
+        if (::rename(temporary.c_str(), path.c_str()) != 0)
+            throw Error("cannot write " + path + ": " + errnoText(errno));
+        staged_.erase(staged_.begin());
+    }
+    release();
 }
 
 }  // namespace vkray

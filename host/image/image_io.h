@@ -6,7 +6,9 @@
 
 #include "image/frame.h"
 
+#include <csignal>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vkray {
@@ -51,5 +53,32 @@ void writeFileAtomically(const std::string& path, const std::string& bytes);
 
 // --aov PREFIX: PREFIX.depth.pfm, PREFIX.normal.pfm, PREFIX.id.pfm.
 void writeAovs(const std::string& prefix, const Frame& frame);
+
+// Files that appear together or not at all (an image, its AOVs, a diff):
+// stage() writes each in full to a temporary file beside its destination
+// (fsync'd), commit() renames them all into place. Destroyed before
+// commit(), it removes its temporaries, so a failed or interrupted run
+// leaves every destination as it was. From the first stage() to the end,
+// SIGINT, SIGTERM and SIGHUP are held back in the calling thread, so that a
+// single-threaded command is not killed with a temporary on disk (render
+// installs handlers of its own, which every thread obeys).
+class StagedFiles {
+public:
+    StagedFiles() = default;
+    ~StagedFiles();
+    StagedFiles(const StagedFiles&) = delete;
+    StagedFiles& operator=(const StagedFiles&) = delete;
+
+    void stage(const std::string& path, const std::string& bytes);  // throws Error naming path
+    void stageImage(const std::string& path, const Image& image);    // as writeImage
+    void stageAovs(const std::string& prefix, const Frame& frame);   // as writeAovs
+    void commit();
+
+private:
+    void release();
+    std::vector<std::pair<std::string, std::string>> staged_;  // temporary, destination
+    bool holding_ = false;
+    sigset_t previousMask_{};
+};
 
 }  // namespace vkray

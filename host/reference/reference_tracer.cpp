@@ -138,13 +138,20 @@ Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings
 
     const SceneIntersector intersector(scene, options.bruteForce);  // one BVH for all rays
     const WhittedShader shader(scene, intersector);
+    const std::size_t raysPerRow = std::size_t((settings.width + block - 1) / block);
+    const std::size_t totalRays = raysPerRow * std::size_t(blockRows);
+    if (options.progress && !options.progress(0, totalRays)) throw Interrupted();
+    std::atomic<std::size_t> raysDone{0};
     std::atomic<int> nextRow{0};
     std::exception_ptr failure;
     std::mutex failureMutex;
     auto worker = [&] {
         try {
-            for (int row = nextRow++; row < blockRows; row = nextRow++)
+            for (int row = nextRow++; row < blockRows; row = nextRow++) {
                 renderBlockRow(shader, camera, settings, block, row * block, frame);
+                const std::size_t done = raysDone += raysPerRow;
+                if (options.progress && !options.progress(done, totalRays)) throw Interrupted();
+            }
         } catch (...) {
             // Stop every worker and rethrow the first failure on the caller's thread.
             nextRow = blockRows;

@@ -6,6 +6,7 @@
 #include "image/frame.h"
 #include "image/pixel_trace.h"
 #include "scene/camera.h"
+#include "scene/render_progress.h"
 #include "scene/scene.h"
 
 namespace vkray::reference {
@@ -13,6 +14,7 @@ namespace vkray::reference {
 struct ReferenceOptions {
     int threads = 0;          // 0: std::thread::hardware_concurrency()
     bool bruteForce = false;  // test every object for every ray (the BVH's oracle)
+    RenderProgress progress;  // after each row of blocks; false stops (Interrupted)
 };
 
 // Renders every pixel (or block: settings.block) with Whitted shading

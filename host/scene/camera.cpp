@@ -7,26 +7,59 @@
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
+#include <sstream>
+#include <string>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 
 namespace vkray {
 
+namespace {
+
+// "(1, 2, 3)"
+std::string text(const glm::dvec3& v) {
+    std::ostringstream out;
+    out << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+    return out.str();
+}
+
+// A direction scaled so that its largest component is 1: its length can then
+// be taken without overflow or underflow; zero stays zero.
+glm::dvec3 wellScaled(const glm::dvec3& v) {
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    return largest > 0 ? v / largest : v;
+}
+
+}  // namespace
+
 CameraBasis makeCameraBasis(const Camera& camera, int width, int height) {
+    // At the scene's `camera` word, or (overridden or automatic) without a place.
+    const auto fail = [&camera](const std::string& message) {
+        if (camera.loc.known())
+            throw Error(formatDiagnostic(camera.loc, nullptr, "error", "camera: " + message));
+        throw Error("camera: " + message);
+    };
+    for (const glm::dvec3* point : {&camera.eye, &camera.look, &camera.up})
+        for (int i = 0; i < 3; ++i)
+            if (!(std::abs((*point)[i]) <= kMaxSceneMagnitude))
+                fail("eye, look and up must be finite and within 1e18, found " + text(*point));
     CameraBasis b;
     b.eye = camera.eye;
-    glm::dvec3 back = camera.eye - camera.look;
-    if (glm::length(back) == 0)
-        throw Error("camera: eye and look point are the same point; move one of them");
+    const glm::dvec3 back = wellScaled(camera.eye - camera.look);
+    if (back == glm::dvec3(0))
+        fail("eye and look are the same point " + text(camera.eye) + "; move one of them");
     b.n = glm::normalize(back);
-    glm::dvec3 right = glm::cross(camera.up, b.n);
-    if (glm::length(right) < 1e-12 * glm::length(camera.up) || glm::length(camera.up) == 0)
-        throw Error("camera: the up vector is zero or parallel to the view direction; choose another up");
+    const glm::dvec3 up = wellScaled(camera.up);
+    if (up == glm::dvec3(0)) fail("the up vector is zero; use e.g. up 0 1 0");
+    const glm::dvec3 right = glm::cross(glm::normalize(up), b.n);
+    if (glm::length(right) < 1e-12)
+        fail("the up vector " + text(camera.up) + " is parallel to the view direction " +
+             text(camera.look - camera.eye) + "; choose another up");
     b.u = glm::normalize(right);
     b.v = glm::cross(b.n, b.u);
     if (!(camera.fovDegrees > 0 && camera.fovDegrees < 180))
-        throw Error("camera: fov must be between 0 and 180 degrees (exclusive)");
+        fail("fov must be between 0 and 180 degrees (exclusive)");
     b.tanHalfFov = std::tan(glm::radians(camera.fovDegrees) * 0.5);
     b.aspect = double(width) / double(height);
     return b;

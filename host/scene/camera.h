@@ -31,7 +31,9 @@ struct CameraBasis {
     double aspect = 1;  // width / height
 };
 
-// Throws Error when eye == look or up is parallel to the view direction.
+// Throws Error when eye == look, up is zero or parallel to the view
+// direction, or a coordinate is beyond kMaxSceneMagnitude: at the camera's
+// place (file:line:col) when it has one.
 CameraBasis makeCameraBasis(const Camera& camera, int width, int height);
 
 // No camera in the scene: look from the direction of Hill's usual eye

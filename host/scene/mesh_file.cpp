@@ -18,6 +18,7 @@
 
 #include "scene/error.h"
 #include "scene/file_loc.h"
+#include "scene/scene.h"
 
 namespace vkray {
 
@@ -133,8 +134,9 @@ std::size_t readCount(WordScanner& scanner, const char* what, std::size_t limit,
     return std::size_t(*value);
 }
 
-// A coordinate: what strtod reads (plus a leading '+'), finite. Values too
-// small for a double read as 0 (or a subnormal), as strtod gives them.
+// A coordinate: what strtod reads (plus a leading '+'), finite, and within
+// kMaxSceneMagnitude (the GPU's float). Values too small for a double read as
+// 0 (or a subnormal), as strtod gives them.
 double readReal(WordScanner& scanner, const std::string& what) {
     const Word word = scanner.require(what);
     std::string_view digits = word.text;
@@ -156,6 +158,9 @@ double readReal(WordScanner& scanner, const std::string& what) {
     }
     if (!std::isfinite(value))
         scanner.fail(word, "expected a finite number for " + what + ", found " + quoted(word.text));
+    if (std::abs(value) > kMaxSceneMagnitude)
+        scanner.fail(word, "the number " + quoted(word.text) + " for " + what +
+                               " is beyond vkray's limit of 1e18 (the GPU computes in float)");
     return value;
 }
 

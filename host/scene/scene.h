@@ -78,7 +78,15 @@ struct Camera {
     glm::dvec3 look{0, 0, 0};
     glm::dvec3 up{0, 1, 0};
     double fovDegrees = 60;  // vertical view angle
+    FileLoc loc;             // the last `camera` word; unknown for the automatic camera
 };
+
+// The largest magnitude of any number in a scene, of any coordinate in a mesh
+// or outline file, and of any entry of an object's M or M^-1. The GPU works
+// in float (largest 3.4e38); with every input below 1e18 the squares and
+// products its intersection tests form stay finite, so an absurd value is
+// refused at its place instead of rendering as black or NaN.
+inline constexpr double kMaxSceneMagnitude = 1e18;
 
 // `makePixmap i file`: an image a texture refers to by index.
 struct Pixmap {

@@ -1,5 +1,6 @@
 #include "scene/sdl_reader.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -115,7 +116,7 @@ private:
     // One statement starting at `word`; returns the object it made, if any.
     std::optional<SceneObject> parseStatement(const Token& word);
     void parseSetting(Keyword keyword, const Token& word);
-    void parseCamera();
+    void parseCamera(const Token& word);
     SceneObject parseShape(ShapeType type, const Token& word);
     void deliver(SceneObject object, const Token& word);
     void skipUnknown(const Token& word);
@@ -126,10 +127,7 @@ private:
     int readCount(const Token& keyword, const char* what);
     std::string readFileName(const Token& keyword);
 
-    void applyTransform(const glm::dmat4& forward, const glm::dmat4& inverse) {
-        current_.worldFromObject = current_.worldFromObject * forward;  // M <- M * T
-        current_.objectFromWorld = inverse * current_.objectFromWorld;  // M^-1 <- T^-1 * M^-1
-    }
+    void applyTransform(const Token& word, const glm::dmat4& forward, const glm::dmat4& inverse);
 
     SdlTokenStream stream_;
     SdlOptions options_;
@@ -148,6 +146,32 @@ private:
     };
     std::vector<OpenBoolean> openBooleans_;
 };
+
+void SdlParser::applyTransform(const Token& word, const glm::dmat4& forward,
+                               const glm::dmat4& inverse) {
+    Transform next;
+    next.worldFromObject = current_.worldFromObject * forward;  // M <- M * T
+    next.objectFromWorld = inverse * current_.objectFromWorld;  // M^-1 <- T^-1 * M^-1
+    // Both go to the renderers (M^-1 to the GPU in float): an entry beyond
+    // kMaxSceneMagnitude (scale 1e-30: M^-1 holds 1e30) is refused here, at
+    // the statement that made it, not rendered black.
+    for (const glm::dmat4* matrix : {&next.worldFromObject, &next.objectFromWorld}) {
+        for (int column = 0; column < 4; ++column) {
+            for (int row = 0; row < 3; ++row) {
+                const double entry = (*matrix)[column][row];
+                if (std::abs(entry) <= kMaxSceneMagnitude) continue;
+                char value[32];
+                std::snprintf(value, sizeof value, "%.3g", entry);
+                throwAt(word, inQuotes(word.text) + " makes the " +
+                                  (matrix == &next.worldFromObject ? "transform" : "inverse transform") +
+                                  " hold " + value + ", beyond vkray's limit of 1e18 (the GPU computes "
+                                  "in float); use factors and offsets nearer 1 (e.g. scale the whole "
+                                  "scene's units)");
+            }
+        }
+    }
+    current_ = next;
+}
 
 std::optional<SceneObject> SdlParser::parseStatement(const Token& word) {
     const auto& table = keywordTable();
@@ -220,16 +244,20 @@ void SdlParser::parseSetting(Keyword keyword, const Token& word) {
 
         case Keyword::Translate: {
             const glm::dvec3 d = readVec3(word);
-            applyTransform(glm::translate(glm::dmat4(1.0), d), glm::translate(glm::dmat4(1.0), -d));
+            applyTransform(word, glm::translate(glm::dmat4(1.0), d),
+                           glm::translate(glm::dmat4(1.0), -d));
             break;
         }
         case Keyword::Rotate: {
             const double degrees = readNumber(word);
             const glm::dvec3 axis = readVec3(word);
             if (axis == glm::dvec3(0.0)) throwAt(word, "rotate axis 0 0 0 has no direction");
-            const glm::dvec3 unitAxis = glm::normalize(axis);
+            // Scaled to a largest component of 1 first: a tiny axis (1e-200 0 0)
+            // would underflow to length 0 and a huge one overflow.
+            const double largest = std::max({std::abs(axis.x), std::abs(axis.y), std::abs(axis.z)});
+            const glm::dvec3 unitAxis = glm::normalize(axis / largest);
             const double radians = glm::radians(degrees);
-            applyTransform(glm::rotate(glm::dmat4(1.0), radians, unitAxis),
+            applyTransform(word, glm::rotate(glm::dmat4(1.0), radians, unitAxis),
                            glm::rotate(glm::dmat4(1.0), -radians, unitAxis));
             break;
         }
@@ -237,7 +265,8 @@ void SdlParser::parseSetting(Keyword keyword, const Token& word) {
             const glm::dvec3 s = readVec3(word);
             if (s.x == 0 || s.y == 0 || s.z == 0)
                 throwAt(word, "scale factor 0 makes the transform singular");
-            applyTransform(glm::scale(glm::dmat4(1.0), s), glm::scale(glm::dmat4(1.0), 1.0 / s));
+            applyTransform(word, glm::scale(glm::dmat4(1.0), s),
+                           glm::scale(glm::dmat4(1.0), 1.0 / s));
             break;
         }
         case Keyword::Push:
@@ -311,12 +340,12 @@ void SdlParser::parseSetting(Keyword keyword, const Token& word) {
             break;
         }
         case Keyword::Camera:
-            parseCamera();
+            parseCamera(word);
             break;
     }
 }
 
-void SdlParser::parseCamera() {
+void SdlParser::parseCamera(const Token& word) {
     // Parts come in any order, each optional; the statement ends at the first
     // word that is not a part. A second `camera` changes only what it names.
     Camera camera = scene_.camera.value_or(Camera{});
@@ -339,6 +368,7 @@ void SdlParser::parseCamera() {
             camera.fovDegrees = fov;
         }
     }
+    camera.loc = word.loc;
     scene_.camera = camera;
 }
 
@@ -371,6 +401,12 @@ void SdlParser::deliver(SceneObject object, const Token& word) {
     // between them; a finished boolean is itself an object for the one around
     // it, or for the scene.
     if (isBoolean(object.type)) {
+        // Every open boolean is one level of the tree it ends up in.
+        if (openBooleans_.size() >= std::size_t(kMaxCsgDepth))
+            throwAt(word, inQuotes(word.text) + " nests booleans " +
+                              std::to_string(kMaxCsgDepth + 1) + " deep, beyond vkray's limit of " +
+                              std::to_string(kMaxCsgDepth) +
+                              "; combine the objects in a balanced tree, or in fewer booleans");
         openBooleans_.push_back(OpenBoolean{std::move(object), word});
         return;
     }
@@ -407,6 +443,10 @@ double SdlParser::readNumber(const Token& keyword, Token* where) {
             throwAt(argument, "number " + inQuotes(argument.text) + " after " +
                                   inQuotes(keyword.text) + " is out of range");
     }
+    if (std::abs(value) > kMaxSceneMagnitude)
+        throwAt(argument, "number " + inQuotes(argument.text) + " after " + inQuotes(keyword.text) +
+                              " is beyond vkray's limit of 1e18 for scene numbers (the GPU "
+                              "computes in float)");
     if (where) *where = argument;
     return value;
 }

@@ -132,60 +132,7 @@ TEST_F(ShaderDev, DevicesListsWhatAShaderDeveloperNeeds) {
         EXPECT_NE(run.output.find(field), std::string::npos) << field << "\n" << run.output;
 }
 
-// --watch in a child process: output goes to a file the test reads.
-class WatchedRender {
-public:
-    WatchedRender(const std::string& args, const fs::path& log) : log_(log) {
-        pid_ = ::fork();
-        if (pid_ == 0) {
-            const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            ::dup2(fd, 1);
-            ::dup2(fd, 2);
-            // The arguments hold no spaces (temporary paths), so split on them.
-            std::vector<std::string> words{VKRAY_BINARY};
-            std::istringstream in(args);
-            for (std::string word; in >> word;) words.push_back(word);
-            std::vector<char*> argv;
-            for (std::string& word : words) argv.push_back(word.data());
-            argv.push_back(nullptr);
-            ::execv(argv[0], argv.data());
-            ::_exit(127);
-        }
-    }
-    ~WatchedRender() {
-        if (pid_ > 0) stop();
-    }
-    // Waits up to 60 s until `text` has appeared `count` times in the output.
-    bool waitFor(const std::string& text, int count) {
-        for (int i = 0; i < 600; ++i) {
-            if (occurrences(text) >= count) return true;
-            std::this_thread::sleep_for(std::chrono::milliseconds(100));
-        }
-        return false;
-    }
-    int occurrences(const std::string& text) const {
-        std::ifstream in(log_);
-        const std::string all((std::istreambuf_iterator<char>(in)), {});
-        int n = 0;
-        for (size_t at = all.find(text); at != std::string::npos; at = all.find(text, at + 1)) ++n;
-        return n;
-    }
-    std::string output() const {
-        std::ifstream in(log_);
-        return std::string((std::istreambuf_iterator<char>(in)), {});
-    }
-    int stop() {
-        ::kill(pid_, SIGINT);  // what Ctrl-C sends
-        int status = 0;
-        ::waitpid(pid_, &status, 0);
-        pid_ = -1;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    }
-
-private:
-    fs::path log_;
-    pid_t pid_ = -1;
-};
+using WatchedRender = vkray::test::BackgroundVkray;
 
 std::string readBytes(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);

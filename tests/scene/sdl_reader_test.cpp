@@ -302,7 +302,8 @@ TEST(SdlReader, DeeplyNestedBooleansDoNotOverflowTheStack) {
     EXPECT_EQ(scene.objects[0].operands.at(1).type, ShapeType::Union);
     std::string tooDeep;
     for (int i = 0; i < 100000; ++i) tooDeep += "union ";
-    EXPECT_ERROR(tooDeep, "t.sdl:1:599995: error: 'union' needs two objects");
+    // Refused at the first boolean beyond kMaxCsgDepth (scene_limits_test.cpp).
+    EXPECT_ERROR(tooDeep, "t.sdl:1:6001: error: 'union' nests booleans 1001 deep");
 }
 
 // ---- def / use ----------------------------------------------------------------

@@ -5,10 +5,19 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
 #include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <vector>
 
 #ifndef VKRAY_BINARY
 #define VKRAY_BINARY "vkray"
@@ -40,6 +49,80 @@ inline RunResult vkray(const std::string& args, const std::string& environment =
     run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return run;
 }
+
+// The binary in a child process (--watch, a render to interrupt): stdout and
+// stderr go to `log`, which the test reads while it runs. `environment`
+// holds NAME=value entries set for the child alone.
+class BackgroundVkray {
+public:
+    BackgroundVkray(const std::string& args, const fs::path& log,
+                    const std::vector<std::string>& environment = {})
+        : log_(log) {
+        pid_ = ::fork();
+        if (pid_ == 0) {
+            const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            ::dup2(fd, 1);
+            ::dup2(fd, 2);
+            for (const std::string& entry : environment) ::putenv(const_cast<char*>(entry.c_str()));
+            // The arguments hold no spaces (temporary paths), so split on them.
+            std::vector<std::string> words{VKRAY_BINARY};
+            std::istringstream in(args);
+            for (std::string word; in >> word;) words.push_back(word);
+            std::vector<char*> argv;
+            for (std::string& word : words) argv.push_back(word.data());
+            argv.push_back(nullptr);
+            ::execv(argv[0], argv.data());
+            ::_exit(127);
+        }
+    }
+    ~BackgroundVkray() {
+        if (pid_ > 0) stop(SIGKILL);
+    }
+    BackgroundVkray(const BackgroundVkray&) = delete;
+    BackgroundVkray& operator=(const BackgroundVkray&) = delete;
+
+    // Waits up to 60 s until `text` has appeared `count` times in the output.
+    bool waitFor(const std::string& text, int count = 1) {
+        for (int i = 0; i < 600; ++i) {
+            if (occurrences(text) >= count) return true;
+            if (exited()) return occurrences(text) >= count;
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        }
+        return false;
+    }
+    int occurrences(const std::string& text) const {
+        const std::string all = output();
+        int n = 0;
+        for (size_t at = all.find(text); at != std::string::npos; at = all.find(text, at + 1)) ++n;
+        return n;
+    }
+    std::string output() const {
+        std::ifstream in(log_);
+        return std::string((std::istreambuf_iterator<char>(in)), {});
+    }
+    // Sends `signal` (SIGINT is what Ctrl-C sends) and returns the exit
+    // status, or -1 when the child did not exit on its own (a signal killed it).
+    int stop(int signal = SIGINT) {
+        if (!exited_) {
+            ::kill(pid_, signal);
+            ::waitpid(pid_, &status_, 0);
+            exited_ = true;
+        }
+        pid_ = -1;
+        return WIFEXITED(status_) ? WEXITSTATUS(status_) : -1;
+    }
+    // True once the child has exited (on its own or by a signal).
+    bool exited() {
+        if (!exited_ && ::waitpid(pid_, &status_, WNOHANG) == pid_) exited_ = true;
+        return exited_;
+    }
+
+private:
+    fs::path log_;
+    pid_t pid_ = -1;
+    bool exited_ = false;
+    int status_ = 0;  // waitpid's, once exited_
+};
 
 class CliTest : public ::testing::Test {
 protected:
