@@ -30,8 +30,8 @@ Image idImage(const Frame& frame);      // 1 channel: object id as float (-1 = b
 // destination is then untouched.
 void writeImage(const std::string& path, const Image& image);
 
-// Reads .png (any channel count; converted to 3 channels in [0,1]) or .pfm
-// (either endianness). Throws Error naming the path.
+// Reads .png or .bmp (any channel count; converted to 3 channels in [0,1])
+// or .pfm (either endianness). Throws Error naming the path.
 Image readImage(const std::string& path);
 
 // The same from bytes already in memory (the format chosen by `path`'s
