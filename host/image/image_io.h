@@ -39,7 +39,7 @@ Image readImage(const std::string& path);
 // above kMaxImageSide per side or kMaxImagePixels before decoding them.
 Image decodeImage(const std::string& bytes, const std::string& path);
 
-// Limits for images read (PNG and PFM alike): they keep a corrupt or hostile
+// Limits for images read (PNG, BMP and PFM alike): they keep a corrupt or hostile
 // header from asking for gigabytes. Renders are at most 16384 per side and 64
 // Mpixels, so everything vkray writes reads back.
 inline constexpr long kMaxImageSide = 1 << 16;
