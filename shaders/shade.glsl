@@ -2,7 +2,7 @@
 // with shadow feelers (VKRAY_SHADOWS), textures (textures.glsl), and the
 // reflected (VKRAY_REFLECTION) and refracted (VKRAY_REFRACTION) rays, followed
 // with an explicit stack instead of Hill's recursive shade().
-// Included by trace.comp after closestHit().
+// Included by trace.comp after walkScene().
 
 #include "textures.glsl"
 
@@ -57,97 +57,30 @@ vec3 offsetOrigin(vec3 p, vec3 n, vec3 side) {
                 abs(p.z) < OFFSET_NEAR_ORIGIN ? p.z + OFFSET_FLOAT_SCALE * n.z : moved.z);
 }
 
-#if VKRAY_SHADOWS
-// What object `index` passes of a light along the feeler origin + t
-// direction, 0 < t < distance: all (1) when the feeler misses it, else the
-// transparency of the surface it meets first; once per object, however many
-// of its surfaces the feeler crosses.
-float transmittance(uint index, vec3 origin, vec3 direction, float distance) {
-    float t;
-    vec3 n, geometric;
-    uint surface;
-    if (!intersectObject(index, origin, direction, distance, t, n, geometric, surface)) return 1.0;
-    return objects[surface].material.y;
-}
-
-// The fraction of a light that reaches the feeler's origin: the product of
-// what every object between passes, 0 as soon as an opaque one is met.
-float lightThrough(vec3 origin, vec3 direction, float distance) {
-    float through = 1.0;
-#if VKRAY_OBJECT_BVH
-    uint unboundedEnd = frame.counts.z + frame.counts.w;
-    for (uint i = frame.counts.z; i < unboundedEnd && through > 0.0; ++i)
-        through *= transmittance(objectIndex[i], origin, direction, distance);
-    // Every node the feeler crosses, in any order: the first child next, the
-    // second kept (so the stack holds at most one node per level).
-    vec3 invD = 1.0 / direction;
-    uint stack[BVH_STACK_SIZE];
-    uint top = 0u;
-    uint node = 0u;
-    while (through > 0.0) {
-        GpuBvhNode n = objectNodes[node];
-        float enter;
-        if (hitsBox(n.lo.xyz, n.hi.xyz, origin, invD, 0.0, distance, enter)) {
-            uint count = floatBitsToUint(n.hi.w), first = floatBitsToUint(n.lo.w);
-            if (count == 0u) {
-                stack[top++] = first;
-                node = node + 1u;
-                continue;
-            }
-            for (uint i = first; i < first + count && through > 0.0; ++i)
-                through *= transmittance(objectIndex[i], origin, direction, distance);
-        }
-        if (top == 0u) break;
-        node = stack[--top];
+// Light i's term of Hill's local model at surface point s seen from
+// direction v (unit, toward the viewer), with texture colour k scaling the
+// diffuse reflection:
+//     a L (k diffuse max(0, m.s) + specular max(0, m.h)^exponent)
+// where a (`through`) is what the light's feeler let through; a light
+// behind the surface (m.s <= 0) is shadowed by the surface itself (a = 0).
+// `record`: write the terms into the debug record (the primary hit of
+// `vkray pixel`).
+vec3 lightTerm(GpuObject object, Surface s, vec3 v, vec3 k, uint i, float through, bool record) {
+    vec3 lightColor = lights[i].color.rgb;
+    vec3 toLight = normalize(lights[i].position.xyz - s.p);
+    float mDotS = dot(s.m, toLight);
+    float mDotH = dot(s.m, normalize(v + toLight));
+    vec3 diffuse = vec3(0.0), specular = vec3(0.0);
+    if (mDotS > 0.0 && through > 0.0) {
+        diffuse = through * mDotS * k * object.diffuse.rgb * lightColor;
+        if (mDotH > 0.0)
+            specular = through * pow(mDotH, object.specular.w) * object.specular.rgb * lightColor;
     }
-#else
-    for (uint i = 0u; i < frame.image.w && through > 0.0; ++i)
-        through *= transmittance(i, origin, direction, distance);
-#endif
-    return max(through, 0.0);
-}
-#endif
-
-// Hill's local model at surface point s seen from direction v (unit, toward
-// the viewer), with texture colour k scaling ambient and diffuse:
-//   emissive + k ambient globalAmbient
-//     + sum over lights of a L (k diffuse max(0, m.s) + specular max(0, m.h)^exponent)
-// where a is what lightThrough() lets through. A light behind the surface
-// (m.s <= 0) is shadowed by the surface itself. `record`: write the terms
-// into the debug record (the primary hit of `vkray pixel`).
-vec3 localShade(GpuObject object, Surface s, vec3 v, vec3 k, bool record) {
-    vec3 color = object.emissive.rgb + k * object.ambient.rgb * frame.globalAmbient.rgb;
-#if VKRAY_SHADOWS
-    vec3 feelerOrigin = offsetOrigin(s.p, s.geometric, s.m);  // lit lights are on m's side
-#endif
-    for (uint i = 0u; i < frame.counts.x; ++i) {
-        vec3 lightPosition = lights[i].position.xyz;
-        vec3 lightColor = lights[i].color.rgb;
-        vec3 toLight = normalize(lightPosition - s.p);
-        float mDotS = dot(s.m, toLight);
-        vec3 h = normalize(v + toLight);
-        float mDotH = dot(s.m, h);
-        float through = mDotS > 0.0 ? 1.0 : 0.0;
-#if VKRAY_SHADOWS
-        if (through > 0.0) {
-            vec3 feeler = lightPosition - feelerOrigin;
-            float distance = length(feeler);
-            through = lightThrough(feelerOrigin, feeler / distance, distance);
-        }
-#endif
-        vec3 diffuse = vec3(0.0), specular = vec3(0.0);
-        if (through > 0.0) {
-            diffuse = through * mDotS * k * object.diffuse.rgb * lightColor;
-            if (mDotH > 0.0)
-                specular = through * pow(mDotH, object.specular.w) * object.specular.rgb * lightColor;
-        }
-        color += diffuse + specular;
 #if VKRAY_DEBUG_PIXEL
-        if (record)
-            debugEntries[frame.image.w + i] = GpuDebugEntry(vec4(diffuse, mDotS), vec4(specular, mDotH));
+    if (record)
+        debugEntries[frame.image.w + i] = GpuDebugEntry(vec4(diffuse, mDotS), vec4(specular, mDotH));
 #endif
-    }
-    return color;
+    return diffuse + specular;
 }
 
 // The generic coordinates of world point p on GpuObject `index`.
@@ -171,7 +104,6 @@ vec3 hitTexture(Hit hit, Surface s) {
 vec3 debugTexture;  // k at the primary hit, for the debug record's ambient term
 #endif
 
-#if VKRAY_REFLECTION || VKRAY_REFRACTION
 // The media a ray is inside, innermost last (air outside all): the speeds of
 // light of up to MEDIUM_STACK_SIZE nested transparent objects. Deeper
 // nesting is counted but keeps the speed of the deepest one remembered.
@@ -180,6 +112,7 @@ struct Medium {
     uint depth;
 };
 
+#if VKRAY_REFRACTION
 float speedOf(Medium medium) {
     return medium.depth == 0u ? 1.0 : medium.speeds[min(medium.depth, MEDIUM_STACK_SIZE) - 1u];
 }
@@ -203,6 +136,7 @@ vec3 refracted(vec3 d, Surface s, float objectSpeed, inout Medium medium) {
     medium = beyond;
     return normalize(eta * d + (eta * cos1 - sqrt(cos2Squared)) * s.m);
 }
+#endif
 
 // One ray still to follow: it adds weight times what it sees.
 struct RayTask {
@@ -212,68 +146,115 @@ struct RayTask {
     uint level;  // 0: the primary ray
     Medium medium;
 };
+
+// Rays waiting: taking one adds at most two, one level deeper, so
+// maxRecursionDepth + 1 entries hold the deepest tree (1 without secondary
+// rays).
+#if VKRAY_REFLECTION || VKRAY_REFRACTION
+const uint RAY_STACK_SIZE = MAX_RECURSION_DEPTH + 1u;
+#else
+const uint RAY_STACK_SIZE = 1u;
 #endif
 
-// What the ray origin + t direction sees: Hill's shade(), down to
-// maxRecursionDepth. The tree of reflected and refracted rays is walked
-// depth first with a stack: taking one ray adds at most two, one level
-// deeper, so maxRecursionDepth + 1 entries suffice. `primary` and
+// What the ray origin + t direction sees: Hill's shade() down to
+// maxRecursionDepth, its recursion unrolled. The tree of reflected and
+// refracted rays is walked depth first with a stack of rays; the lights of
+// a hit are visited one per step, each with its shadow feeler, so that the
+// loop walks the scene (walkScene) in one place only. `primary` and
 // `primaryNormal` (m) describe the first hit, for the AOVs.
 vec3 radiance(vec3 origin, vec3 direction, out Hit primary, out vec3 primaryNormal) {
     primaryNormal = vec3(0.0);
-#if VKRAY_REFLECTION || VKRAY_REFRACTION
-    uint maxLevel = min(frame.sampling.z, MAX_RECURSION_DEPTH);
-    RayTask stack[MAX_RECURSION_DEPTH + 1u];
+    vec3 color = vec3(0.0);
+    RayTask stack[RAY_STACK_SIZE];
     uint top = 0u;
     stack[top++] = RayTask(origin, direction, vec3(1.0), 0u, Medium(vec4(1.0), 0u));
-    vec3 color = vec3(0.0);
-    while (top > 0u) {
-        RayTask ray = stack[--top];
-        Hit hit = closestHit(ray.origin, ray.direction);
-        bool first = ray.level == 0u;
-        if (first) primary = hit;
+    // The hit whose lights are being visited (while light < the light count).
+    RayTask ray;
+    Surface s;
+    GpuObject object;
+    vec3 k;
+    uint light = frame.counts.x;
+#if VKRAY_SHADOWS
+    vec3 feelerOrigin;
+#endif
+    while (true) {
+        // This step's walk: the feeler toward the next light, or the next ray.
+        vec3 walkOrigin, walkDirection;
+        float walkMax = INFINITY;
+        bool feeler = light < frame.counts.x;
+        if (feeler) {
+            bool facing = dot(s.m, lights[light].position.xyz - s.p) > 0.0;
+#if VKRAY_SHADOWS
+            if (facing) {
+                walkOrigin = feelerOrigin;
+                walkDirection = lights[light].position.xyz - feelerOrigin;
+                walkMax = length(walkDirection);
+                walkDirection /= walkMax;
+            } else
+#endif
+            {
+                // Behind the surface (a = 0), or no object that could shadow.
+                color += ray.weight * lightTerm(object, s, -ray.direction, k, light,
+                                                facing ? 1.0 : 0.0, ray.level == 0u);
+                ++light;
+                continue;
+            }
+        } else {
+            if (top == 0u) break;
+            ray = stack[--top];
+            walkOrigin = ray.origin;
+            walkDirection = ray.direction;
+        }
+
+        Hit hit;
+        float through;
+        walkScene(walkOrigin, walkDirection, walkMax, feeler, hit, through);
+
+        if (feeler) {
+            color += ray.weight * lightTerm(object, s, -ray.direction, k, light, through,
+                                            ray.level == 0u);
+            ++light;
+            continue;
+        }
+        if (ray.level == 0u) primary = hit;
         if (hit.object < 0) {
             color += ray.weight * frame.background.rgb;
             continue;
         }
-        Surface s = surfaceAt(hit, ray.origin, ray.direction);
-        vec3 k = hitTexture(hit, s);
-        if (first) {
+        s = surfaceAt(hit, ray.origin, ray.direction);
+        k = hitTexture(hit, s);
+        object = objects[hit.surface];
+        if (ray.level == 0u) {
             primaryNormal = s.m;
 #if VKRAY_DEBUG_PIXEL
             debugTexture = k;
 #endif
         }
-        GpuObject object = objects[hit.surface];
-        color += ray.weight * localShade(object, s, -ray.direction, k, first);
-        if (ray.level >= maxLevel) continue;
-        // Pushed refraction first, so that reflection is followed first, as Hill's shade() does.
+        // Emissive and ambient now, each light in the steps that follow.
+        color += ray.weight * (object.emissive.rgb + k * object.ambient.rgb * frame.globalAmbient.rgb);
+        light = 0u;
+#if VKRAY_SHADOWS
+        feelerOrigin = offsetOrigin(s.p, s.geometric, s.m);  // lit lights are on m's side
+#endif
+        // The secondary rays wait on the stack until the lights are done;
+        // refraction goes first, so that reflection is followed first, as in
+        // Hill's shade().
+        if (ray.level >= min(frame.sampling.z, MAX_RECURSION_DEPTH)) continue;
 #if VKRAY_REFRACTION
         if ((object.shape.z & FOLLOW_REFRACTION) != 0u) {
             Medium medium = ray.medium;
             vec3 t = refracted(ray.direction, s, object.material.z, medium);
-            stack[top++] = RayTask(offsetOrigin(s.p, s.geometric, t), t, ray.weight * object.material.y,
-                                   ray.level + 1u, medium);
+            stack[top++] = RayTask(offsetOrigin(s.p, s.geometric, t), t,
+                                   ray.weight * object.material.y, ray.level + 1u, medium);
         }
 #endif
 #if VKRAY_REFLECTION
         if ((object.shape.z & FOLLOW_REFLECTION) != 0u) {
             vec3 r = normalize(ray.direction - 2.0 * dot(ray.direction, s.m) * s.m);
-            stack[top++] = RayTask(offsetOrigin(s.p, s.geometric, r), r, ray.weight * object.material.x,
-                                   ray.level + 1u, ray.medium);
+            stack[top++] = RayTask(offsetOrigin(s.p, s.geometric, r), r,
+                                   ray.weight * object.material.x, ray.level + 1u, ray.medium);
         }
 #endif
     }
     return color;
-#else
-    primary = closestHit(origin, direction);
-    if (primary.object < 0) return frame.background.rgb;
-    Surface s = surfaceAt(primary, origin, direction);
-    primaryNormal = s.m;
-    vec3 k = hitTexture(primary, s);
-#if VKRAY_DEBUG_PIXEL
-    debugTexture = k;
-#endif
-    return localShade(objects[primary.surface], s, -direction, k, true);
-#endif
 }

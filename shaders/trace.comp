@@ -136,13 +136,22 @@ bool intersectObject(uint index, vec3 origin, vec3 direction, float tMax, out fl
 // depend on the order the BVH happens to visit them.
 const float TIE_TOLERANCE = 1e-6;
 
-void testObject(uint index, vec3 origin, vec3 direction, inout Hit hit) {
+// Tests object `index` for a scene walk (walkScene): a closer hit replaces
+// `hit`; for a shadow feeler (VKRAY_SHADOWS), any hit before hit.t passes the
+// surface's transparency into `through`.
+void testObject(uint index, vec3 origin, vec3 direction, bool feeler, inout Hit hit,
+                inout float through) {
     float t;
     vec3 n, geometric;
     uint surface;
-    if (!intersectObject(index, origin, direction, hit.t * (1.0 + TIE_TOLERANCE), t, n, geometric,
-                         surface))
+    float tMax = feeler ? hit.t : hit.t * (1.0 + TIE_TOLERANCE);
+    if (!intersectObject(index, origin, direction, tMax, t, n, geometric, surface)) return;
+#if VKRAY_SHADOWS
+    if (feeler) {
+        through *= objects[surface].material.y;
         return;
+    }
+#endif
     bool nearer = t < hit.t * (1.0 - TIE_TOLERANCE);
     bool tieWon = hit.object < 0 || int(index) < hit.object;
     if (nearer || tieWon) {
@@ -157,20 +166,28 @@ void testObject(uint index, vec3 origin, vec3 direction, inout Hit hit) {
 #if VKRAY_OBJECT_BVH
 layout(std430, set = 0, binding = BINDING_OBJECT_NODES) readonly buffer ObjectNodeBlock { GpuBvhNode objectNodes[]; };
 layout(std430, set = 0, binding = BINDING_OBJECT_INDEX) readonly buffer ObjectIndexBlock { uint objectIndex[]; };
-
 #endif
 
-Hit closestHit(vec3 origin, vec3 direction) {
-    Hit hit;
-    hit.t = INFINITY;
+// Every object the ray origin + t direction may meet in (0, tMax), each
+// tested once: for a ray (feeler false, tMax infinite) `hit` ends as the
+// closest hit; for a shadow feeler (tMax = the light's distance) `through`
+// ends as the product of the transparencies of the objects met, the walk
+// stopping at 0. This is the shader's only call of testObject: lavapipe
+// inlines every function, so one call site keeps the shapes' code (CSG
+// above all) compiled once.
+void walkScene(vec3 origin, vec3 direction, float tMax, bool feeler, out Hit hit,
+               out float through) {
+    hit.t = tMax;
     hit.object = -1;
     hit.surface = 0u;
     hit.genericNormal = vec3(0.0);
     hit.geometricNormal = vec3(0.0);
+    through = 1.0;
 #if VKRAY_OBJECT_BVH
-    // Unbounded objects (planes) first, then the BVH over the rest.
-    for (uint i = frame.counts.z; i < frame.counts.z + frame.counts.w; ++i)
-        testObject(objectIndex[i], origin, direction, hit);
+    // The unbounded objects (planes) first, as if a leaf, then the BVH's
+    // leaves front to back. A feeler keeps hit.t = tMax: it visits every
+    // node it crosses.
+    uint leafFirst = frame.counts.z, leafCount = frame.counts.w;
     vec3 invD = 1.0 / direction;
     uint stack[BVH_STACK_SIZE];
     float stackEnter[BVH_STACK_SIZE];
@@ -179,37 +196,50 @@ Hit closestHit(vec3 origin, vec3 direction) {
     float enter;
     GpuBvhNode root = objectNodes[0];
     bool walking = hitsBox(root.lo.xyz, root.hi.xyz, origin, invD, 0.0, hit.t, enter);
-    while (walking) {
-        GpuBvhNode n = objectNodes[node];
-        uint count = floatBitsToUint(n.hi.w), first = floatBitsToUint(n.lo.w);
-        if (count == 0u) {
-            uint nearIndex, farIndex;
-            float farEnter;
-            int hits = orderChildren(objectNodes[node + 1u], node + 1u, objectNodes[first], first,
-                                     origin, invD, 0.0, hit.t, nearIndex, farIndex, farEnter);
-            if (hits == 2) {
-                stack[top] = farIndex;
-                stackEnter[top++] = farEnter;
+    bool leafDone = false;  // the last leaf is tested: the walk goes on from the stack
+    while (through > 0.0) {
+        for (uint i = leafFirst; i < leafFirst + leafCount && through > 0.0; ++i)
+            testObject(objectIndex[i], origin, direction, feeler, hit, through);
+        leafCount = 0u;
+        while (walking || leafDone) {
+            if (!leafDone) {
+                GpuBvhNode n = objectNodes[node];
+                uint count = floatBitsToUint(n.hi.w), first = floatBitsToUint(n.lo.w);
+                if (count > 0u) {
+                    leafFirst = first;
+                    leafCount = count;
+                    leafDone = true;
+                    break;
+                }
+                uint nearIndex, farIndex;
+                float farEnter;
+                int hits = orderChildren(objectNodes[node + 1u], node + 1u, objectNodes[first], first,
+                                         origin, invD, 0.0, hit.t, nearIndex, farIndex, farEnter);
+                if (hits == 2) {
+                    stack[top] = farIndex;
+                    stackEnter[top++] = farEnter;
+                }
+                if (hits > 0) {
+                    node = nearIndex;
+                    continue;
+                }
             }
-            if (hits > 0) {
-                node = nearIndex;
-                continue;
+            // Next: the nearest kept node the ray still reaches before its hit.
+            leafDone = false;
+            walking = false;
+            while (top > 0u && !walking) {
+                --top;
+                walking = stackEnter[top] <= hit.t;
+                node = stack[top];
             }
-        } else {
-            for (uint i = first; i < first + count; ++i) testObject(objectIndex[i], origin, direction, hit);
         }
-        // Next: the nearest kept node the ray still reaches before its hit.
-        walking = false;
-        while (top > 0u && !walking) {
-            --top;
-            walking = stackEnter[top] <= hit.t;
-            node = stack[top];
-        }
+        if (leafCount == 0u) break;
     }
 #else
-    for (uint i = 0u; i < frame.image.w; ++i) testObject(i, origin, direction, hit);
+    for (uint i = 0u; i < frame.image.w && through > 0.0; ++i)
+        testObject(i, origin, direction, feeler, hit, through);
 #endif
-    return hit;
+    if (!feeler && hit.object < 0) hit.t = INFINITY;
 }
 
 #include "shade.glsl"

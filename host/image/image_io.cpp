@@ -14,6 +14,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -50,13 +51,17 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
-enum class Format { Png, Pfm };
+enum class Format { Png, Pfm, Bmp };
 
-Format formatOf(const std::string& path) {
+// What vkray writes (.png, .pfm), or with `reading` also what it reads
+// (.bmp: Hill's pixmaps).
+Format formatOf(const std::string& path, bool reading) {
     const std::string ext = lowerExtension(path);
     if (ext == ".png") return Format::Png;
     if (ext == ".pfm") return Format::Pfm;
-    throw Error(path + ": unsupported image format '" + ext + "' (use .png or .pfm)");
+    if (ext == ".bmp" && reading) return Format::Bmp;
+    throw Error(path + ": unsupported image format '" + ext + "' (use .png or .pfm" +
+                (reading ? ", or .bmp to read)" : ")"));
 }
 
 void requireWritable(const std::string& path, const Image& image) {
@@ -163,31 +168,108 @@ std::string checkedPngChunks(const std::string& path, const std::string& bytes) 
     return kept;
 }
 
-Image decodePng(const std::string& path, const std::string& fileBytes) {
-    if (fileBytes.size() > size_t(INT32_MAX)) throw Error(path + ": PNG file is too large");
-    const std::string bytes = checkedPngChunks(path, fileBytes);
+// PNG or BMP bytes (already checked to start like one) through stb, as 3
+// channels in [0, 1].
+Image decodeWithStb(const std::string& path, const std::string& bytes, const char* what) {
+    if (bytes.size() > size_t(INT32_MAX))
+        throw Error(path + ": " + what + " file is too large");
     // stb allocates the whole image before it finds out that the data is
     // missing: check the size the header claims first.
     int claimedWidth = 0, claimedHeight = 0, claimedChannels = 0;
     if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()),
                               &claimedWidth, &claimedHeight, &claimedChannels) &&
-        (claimedWidth > kMaxImageSide || claimedHeight > kMaxImageSide ||
-         (long long)claimedWidth * claimedHeight > kMaxImagePixels))
-        throw Error(tooManyPixels(path, claimedWidth, claimedHeight));
+        (std::abs(claimedWidth) > kMaxImageSide || std::abs(claimedHeight) > kMaxImageSide ||
+         std::abs((long long)claimedWidth * claimedHeight) > kMaxImagePixels))
+        // (stb's BMP info gives a top-down file's height as it is stored: negative)
+        throw Error(tooManyPixels(path, std::abs(claimedWidth), std::abs(claimedHeight)));
     Image image;
     int fileChannels = 0;
     stbi_uc* data =
         stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()),
                               &image.width, &image.height, &fileChannels, 3);
     if (!data)
-        throw Error(path + ": not a readable PNG file (" + std::string(stbi_failure_reason()) +
-                    ")");
+        throw Error(path + ": not a readable " + what + " file (" +
+                    std::string(stbi_failure_reason()) + ")");
+    if (image.width <= 0 || image.height <= 0) {
+        // stb's BMP decoder accepts a 0 x 0 header (fuzz/image_fuzz.cpp found it).
+        stbi_image_free(data);
+        throw Error(path + ": not a readable " + what + " file (it has no pixels: " +
+                    std::to_string(image.width) + "x" + std::to_string(image.height) + ")");
+    }
     image.channels = 3;  // forced above, whatever the file holds
     const size_t count = size_t(image.width) * size_t(image.height) * 3;
     image.pixels.resize(count);
     for (size_t i = 0; i < count; ++i) image.pixels[i] = float(data[i]) / 255.0f;
     stbi_image_free(data);
     return image;
+}
+
+// stb tries every decoder it has on any bytes: each format checks its own
+// signature first, so that a .png is only ever read by the PNG decoder.
+Image decodePng(const std::string& path, const std::string& fileBytes) {
+    if (fileBytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0)
+        throw Error(path + ": not a readable PNG file (no PNG signature)");
+    return decodeWithStb(path, checkedPngChunks(path, fileBytes), "PNG");
+}
+
+std::uint32_t littleEndianAt(const std::string& bytes, size_t at, int count) {
+    std::uint32_t v = 0;
+    for (int i = count - 1; i >= 0; --i) v = v << 8 | std::uint8_t(bytes[at + size_t(i)]);
+    return v;
+}
+
+// stb reads zeros past the end of a BMP instead of failing: a truncated file
+// would come back black. The pixel rows an uncompressed header promises must
+// be there. (stb refuses the RLE forms itself.)
+void checkBmpHeader(const std::string& path, const std::string& bytes) {
+    const auto cutShort = [&] {
+        return Error(path + ": truncated BMP: the file ends inside its header (" +
+                     std::to_string(bytes.size()) + " bytes)");
+    };
+    if (bytes.size() < 18) throw cutShort();
+    const std::uint32_t offset = littleEndianAt(bytes, 10, 4);
+    const std::uint32_t headerSize = littleEndianAt(bytes, 14, 4);
+    long long width = 0, height = 0, bitsPerPixel = 0, compression = 0;
+    if (headerSize == 12) {  // OS/2 BITMAPCOREHEADER
+        if (bytes.size() < 14 + 12) throw cutShort();
+        width = littleEndianAt(bytes, 18, 2);
+        height = littleEndianAt(bytes, 20, 2);
+        bitsPerPixel = littleEndianAt(bytes, 24, 2);
+        // stb_image 2.27 miscounts these palettes and decodes all black.
+        if (bitsPerPixel < 16)
+            throw Error(path + ": OS/2 BMP files with a palette are not supported (save it as a "
+                               "Windows BMP or a PNG)");
+    } else if (headerSize >= 40) {
+        if (bytes.size() < 14 + 40) throw cutShort();
+        width = std::int32_t(littleEndianAt(bytes, 18, 4));
+        height = std::int32_t(littleEndianAt(bytes, 22, 4));
+        bitsPerPixel = littleEndianAt(bytes, 28, 2);
+        compression = littleEndianAt(bytes, 30, 4);
+    } else {
+        return;
+    }
+    // stb takes any other code but the RLE ones (1, 2) for uncompressed rows.
+    if (compression != 0 && compression != 3)  // 3: bit fields, the same row layout
+        throw Error(path + ": BMP compression " + std::to_string(compression) +
+                    " is not supported (only uncompressed BMP files are read)");
+    height = height < 0 ? -height : height;             // negative: rows top-down
+    if (width <= 0 || width > kMaxImageSide || height > kMaxImageSide ||
+        width * height > kMaxImagePixels)
+        return;  // stb or the size limits say what is wrong
+    const long long rowBytes = (width * bitsPerPixel + 31) / 32 * 4;
+    const long long needed = (long long)offset + rowBytes * height;
+    if ((long long)bytes.size() < needed)
+        throw Error(path + ": truncated BMP: a " + std::to_string(width) + "x" +
+                    std::to_string(height) + " image of " + std::to_string(bitsPerPixel) +
+                    " bits per pixel needs " + std::to_string(needed) + " bytes, the file has " +
+                    std::to_string(bytes.size()));
+}
+
+Image decodeBmp(const std::string& path, const std::string& bytes) {
+    if (bytes.compare(0, 2, "BM") != 0)
+        throw Error(path + ": not a readable BMP file (no 'BM' signature)");
+    checkBmpHeader(path, bytes);
+    return decodeWithStb(path, bytes, "BMP");
 }
 
 // ---- PFM -------------------------------------------------------------------
@@ -365,12 +447,15 @@ void writeImage(const std::string& path, const Image& image) {
 }
 
 Image decodeImage(const std::string& bytes, const std::string& path) {
-    const Format format = formatOf(path);
-    return format == Format::Png ? decodePng(path, bytes) : decodePfm(path, bytes);
+    switch (formatOf(path, true)) {
+    case Format::Png: return decodePng(path, bytes);
+    case Format::Bmp: return decodeBmp(path, bytes);
+    default: return decodePfm(path, bytes);
+    }
 }
 
 Image readImage(const std::string& path) {
-    formatOf(path);  // an unsupported extension is refused before the file is read
+    formatOf(path, true);  // an unsupported extension is refused before the file is read
     return decodeImage(readFile(path), path);
 }
 
@@ -441,7 +526,7 @@ void StagedFiles::stage(const std::string& path, const std::string& bytes) {
 }
 
 void StagedFiles::stageImage(const std::string& path, const Image& image) {
-    const Format format = formatOf(path);
+    const Format format = formatOf(path, false);
     requireWritable(path, image);
     stage(path, format == Format::Png ? encodePng(path, image) : encodePfm(image));
 }

@@ -32,8 +32,8 @@ Image idImage(const Frame& frame);      // 1 channel: object id as float (-1 = b
 // destination is then untouched.
 void writeImage(const std::string& path, const Image& image);
 
-// Reads .png (any channel count; converted to 3 channels in [0,1]) or .pfm
-// (either endianness). Throws Error naming the path.
+// Reads .png or .bmp (any channel count; converted to 3 channels in [0,1])
+// or .pfm (either endianness). Throws Error naming the path.
 Image readImage(const std::string& path);
 
 // The same from bytes already in memory (the format chosen by `path`'s
@@ -41,7 +41,7 @@ Image readImage(const std::string& path);
 // above kMaxImageSide per side or kMaxImagePixels before decoding them.
 Image decodeImage(const std::string& bytes, const std::string& path);
 
-// Limits for images read (PNG and PFM alike): they keep a corrupt or hostile
+// Limits for images read (PNG, BMP and PFM alike): they keep a corrupt or hostile
 // header from asking for gigabytes. Renders are at most 16384 per side and 64
 // Mpixels, so everything vkray writes reads back.
 inline constexpr long kMaxImageSide = 1 << 16;

@@ -10,7 +10,7 @@
 
 namespace vkray {
 
-// Decodes every pixmap into Pixmap::image (PNG or PFM, by extension; grey
+// Decodes every pixmap into Pixmap::image (BMP, PNG or PFM, by extension; grey
 // becomes three equal channels) and checks every object's texture (operands
 // of booleans included): `texture 3` needs `parameters` whose first value
 // is the index of a makePixmap of the scene. Errors (strict):

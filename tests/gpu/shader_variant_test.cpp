@@ -1,0 +1,104 @@
+// Which shader variant a scene gets: only the shapes and the parts of
+// Whitted shading it can use (no device needed; compiling them is
+// `vkray shaders check`, in tests/app/shader_dev_test.cpp).
+#include "gpu/shader_variant.h"
+
+#include "scene/sdl_reader.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace vkray::gpu {
+namespace {
+
+ShaderFeatures featuresOfText(const std::string& sdl, int spp = 1) {
+    const Scene scene = parseSdl(sdl, "t.sdl", {});
+    RenderSettings settings;
+    settings.spp = spp;
+    return featuresOf(scene, settings, false);
+}
+
+bool hasDefine(const ShaderFeatures& features, const std::string& name) {
+    const Defines defines = definesFor(features);
+    return std::any_of(defines.begin(), defines.end(),
+                       [&](const auto& d) { return d.first == name && d.second == "1"; });
+}
+
+TEST(ShaderVariant, AScenesOwnShadingOnly) {
+    const ShaderFeatures plain = featuresOfText("sphere cube");
+    EXPECT_EQ(plain.shading, decltype(plain.shading){}) << describe(plain);
+    EXPECT_EQ(describe(plain), "sphere+cube");
+    EXPECT_FALSE(hasDefine(plain, "VKRAY_SHADOWS"));
+}
+
+TEST(ShaderVariant, ShadowsWhereAFeelerCanMeetAnObject) {
+    EXPECT_TRUE(featuresOfText("light 1 2 3 1 1 1 sphere cube").has(Shading::Shadows));
+    // No light, or one convex object: no feeler can meet anything.
+    EXPECT_FALSE(featuresOfText("sphere cube").has(Shading::Shadows));
+    EXPECT_FALSE(featuresOfText("light 1 2 3 1 1 1 sphere").has(Shading::Shadows));
+    EXPECT_TRUE(featuresOfText("light 1 2 3 1 1 1 torus").has(Shading::Shadows));
+    EXPECT_TRUE(hasDefine(featuresOfText("light 1 2 3 1 1 1 sphere cube"), "VKRAY_SHADOWS"));
+}
+
+TEST(ShaderVariant, SecondaryRaysAboveTheirThresholdsWithRecursion) {
+    // Hill: reflectivity must exceed minReflectivity (default 0.5).
+    EXPECT_FALSE(featuresOfText("reflectivity 0.5 sphere").has(Shading::Reflection));
+    const ShaderFeatures mirror = featuresOfText("reflectivity 0.6 sphere");
+    EXPECT_TRUE(mirror.has(Shading::Reflection));
+    EXPECT_FALSE(mirror.has(Shading::Refraction));
+    EXPECT_EQ(describe(mirror), "sphere+reflection");
+    EXPECT_TRUE(featuresOfText("minReflectivity 0.1 reflectivity 0.2 sphere").has(Shading::Reflection));
+    EXPECT_FALSE(featuresOfText("maxRecursionDepth 0 reflectivity 0.9 sphere").has(Shading::Reflection));
+    EXPECT_TRUE(featuresOfText("transparency 0.9 sphere").has(Shading::Refraction));
+    EXPECT_FALSE(featuresOfText("maxRecursionDepth 0 transparency 0.9 sphere").has(Shading::Refraction));
+    // A boolean's operands count.
+    EXPECT_TRUE(featuresOfText("union sphere transparency 0.9 cube").has(Shading::Refraction));
+}
+
+TEST(ShaderVariant, SolidAndImageTexturesApart) {
+    const ShaderFeatures solid = featuresOfText("texture 1 sphere texture 2 cube");
+    EXPECT_TRUE(solid.has(Shading::Textures));
+    EXPECT_FALSE(solid.has(Shading::Pixmaps));
+    const ShaderFeatures image = featuresOfText("texture 3 parameters 1 0 sphere");
+    EXPECT_FALSE(image.has(Shading::Textures));
+    EXPECT_TRUE(image.has(Shading::Pixmaps));
+    EXPECT_TRUE(hasDefine(image, "VKRAY_PIXMAPS"));
+}
+
+TEST(ShaderVariant, AntialiasingWithMoreThanOneSample) {
+    EXPECT_FALSE(featuresOfText("sphere", 1).has(Shading::Antialias));
+    EXPECT_TRUE(featuresOfText("sphere", 2).has(Shading::Antialias));
+}
+
+TEST(ShaderVariant, AllFeaturesCompilesEverythingIn) {
+    const ShaderFeatures all = featuresOf(parseSdl("sphere", "t.sdl", {}), {}, true);
+    EXPECT_EQ(describe(all), "all shapes+all shading");
+    for (const GpuShading& shading : kGpuShading) EXPECT_TRUE(hasDefine(all, shading.define));
+}
+
+TEST(ShaderVariant, ShadersCheckCoversEachShadingFeatureAndTheirMix) {
+    const std::vector<ShaderFeatures> variants = allVariants();
+    EXPECT_EQ(variants.size(), 142u);
+    const auto count = [&](const auto& predicate) {
+        return std::count_if(variants.begin(), variants.end(), predicate);
+    };
+    for (std::size_t i = 0; i < kGpuShading.size(); ++i)
+        EXPECT_GE(count([&](const ShaderFeatures& f) {
+                      return f.shading[i] && std::count(f.shading.begin(), f.shading.end(), true) == 1;
+                  }),
+                  2)
+            << kGpuShading[i].name << " alone, with and without the object BVH";
+    EXPECT_EQ(count([](const ShaderFeatures& f) {
+                  return f.debugPixel && describe(f).find("all shading") != std::string::npos;
+              }),
+              2);
+    // Every variant is different.
+    for (std::size_t i = 0; i < variants.size(); ++i)
+        for (std::size_t j = i + 1; j < variants.size(); ++j)
+            ASSERT_FALSE(variants[i] == variants[j]) << describe(variants[i]);
+    EXPECT_EQ(allVariants(true).size(), 1666u);
+}
+
+}  // namespace
+}  // namespace vkray::gpu
