@@ -7,11 +7,13 @@
 // _TAPERED_CYLINDER, _TORUS, _MESH and VKRAY_CSG are 1 for the shapes
 // present; VKRAY_OBJECT_BVH finds objects through a BVH instead of testing
 // each; VKRAY_DEBUG_PIXEL (for `vkray pixel`) also records every step of the
-// one ray the host dispatches into the debug buffer.
+// one ray the host dispatches into the debug buffer. VKRAY_PRECISION_NAIVE
+// selects the textbook float formulas (precision.glsl).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
 #include "layout.h"
+#include "precision.glsl"
 
 layout(local_size_x = WORKGROUP_X, local_size_y = WORKGROUP_Y, local_size_z = 1) in;
 
@@ -79,7 +81,11 @@ struct Hit {
 // primitive whose surface it is.
 bool intersectObject(uint index, vec3 origin, vec3 direction, float tMax, out float t,
                      out vec3 n, out uint surface) {
-    const float tMin = 0.0;
+#if VKRAY_PRECISION_NAIVE
+    const float tMin = NAIVE_EPSILON;  // the textbook's fixed epsilon, on every ray
+#else
+    const float tMin = 0.0;  // robust: primary rays start at the eye, not on a surface
+#endif
     surface = index;
     GpuObject object = objects[index];
 #if VKRAY_CSG

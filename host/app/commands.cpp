@@ -1,6 +1,7 @@
 #include "app/commands.h"
 
 #include "app/pixel_report.h"
+#include "app/stress_command.h"
 #include "app/watch.h"
 #include "gpu/context.h"
 #include "gpu/gpu_tracer.h"
@@ -101,7 +102,7 @@ struct GpuSession {
             out << "device: " << device.name << " (" << device.type << ", " << device.driverName
                 << " " << device.driverInfo << ")\n";
             tracer = std::make_unique<gpu::GpuTracer>(
-                *context, gpu::GpuRenderOptions{.shaderDirectory = shaderDirectory(o), .allFeatures = o.allFeatures, .userDefines = o.defines});
+                *context, gpu::GpuRenderOptions{.shaderDirectory = shaderDirectory(o), .allFeatures = o.allFeatures, .userDefines = o.defines, .precision = o.precision});
         }
         return *tracer;
     }
@@ -130,7 +131,8 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
     gpu::GpuRenderStats stats;
     Frame frame = tracer.render(scene, camera, settings, &stats);
     reportShader(stats, o, out);
-    out << "gpu render: " << fixed(stats.renderSeconds, 3) << " s, " << stats.tiles << " tiles, "
+    out << "gpu render: " << fixed(stats.renderSeconds, 3) << " s, precision "
+        << precisionName(o.precision) << ", " << stats.tiles << " tiles, "
         << fixed(mrays(stats.rays, stats.renderSeconds), 2) << " Mrays/s\n";
     session.requireNoValidationMessages(o);
     return frame;
@@ -339,6 +341,8 @@ int runDevices(std::ostream& out) {
 
 }  // namespace
 
+std::string shaderDirectoryFor(const Options& o) { return shaderDirectory(o); }
+
 int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
     switch (o.command) {
     case Command::Help: out << usageText(); return 0;
@@ -348,6 +352,8 @@ int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
     case Command::ShadersCheck: return runShadersCheck(o, out, err);
     case Command::Compare: return runCompare(o, out);
     case Command::Devices: return runDevices(out);
+    case Command::Stress: return runStress(o, out, err);
+    case Command::Report: return runReport(o, out, err);
     }
     return 1;
 }

@@ -171,8 +171,9 @@ GpuTracer::GpuTracer(Context& context, GpuRenderOptions options)
 GpuTracer::~GpuTracer() = default;
 
 const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRenderStats& stats) {
-    const ShaderSource source{options_.shaderDirectory, "trace.comp",
-                              definesFor(features, options_.userDefines)};
+    Defines defines = precisionDefines(options_.precision);
+    defines.insert(defines.end(), options_.userDefines.begin(), options_.userDefines.end());
+    const ShaderSource source{options_.shaderDirectory, "trace.comp", definesFor(features, defines)};
     stats.shader = loadOrCompile(source);
     stats.variant = describe(features);
     if (pipeline_ && pipeline_->key == stats.shader.key) return *pipeline_;
@@ -205,8 +206,11 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     return *pipeline_;
 }
 
-Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
+Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera,
                         const RenderSettings& settings, GpuRenderStats* stats) {
+    const GpuInputs inputs = prepareGpuInputs(options_.precision, original, originalCamera);
+    const Scene& scene = inputs.scene;
+    const CameraBasis& camera = inputs.camera;
     if (settings.width < 1 || settings.height < 1 || settings.block < 1)
         throw Error("render: width, height and block must be at least 1");
     GpuRenderStats local;
@@ -249,9 +253,12 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
     return frame;
 }
 
-PixelTrace GpuTracer::tracePixel(const Scene& scene, const CameraBasis& camera,
+PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& originalCamera,
                                  const RenderSettings& settings, int x, int y,
                                  GpuRenderStats* stats) {
+    const GpuInputs inputs = prepareGpuInputs(options_.precision, original, originalCamera);
+    const Scene& scene = inputs.scene;
+    const CameraBasis& camera = inputs.camera;
     if (x < 0 || y < 0 || x >= settings.width || y >= settings.height)
         throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                     ") is outside the " + std::to_string(settings.width) + "x" +
@@ -271,7 +278,9 @@ PixelTrace GpuTracer::tracePixel(const Scene& scene, const CameraBasis& camera,
     PixelTrace trace;
     trace.x = x;
     trace.y = y;
-    trace.rayOrigin = toDvec3(header.rayOrigin);
+    // Back from the mode's camera-relative world (numerics/precision.h) to the scene's.
+    const glm::dvec3 shift = originalCamera.eye - camera.eye;
+    trace.rayOrigin = toDvec3(header.rayOrigin) + shift;
     trace.rayDirection = toDvec3(header.rayDirection);
     for (uint i = 0; i < header.counts.x; ++i) {
         const float t = entries[i].first.w;
@@ -281,7 +290,7 @@ PixelTrace GpuTracer::tracePixel(const Scene& scene, const CameraBasis& camera,
     std::memcpy(&trace.hitObject, &header.normal.w, sizeof(std::int32_t));
     if (trace.hitObject >= 0) {
         trace.t = header.hitPoint.w;
-        trace.point = toDvec3(header.hitPoint);
+        trace.point = toDvec3(header.hitPoint) + shift;
         trace.normal = toDvec3(header.normal);
         trace.emissive = toDvec3(header.emissive);
         trace.ambient = toDvec3(header.ambient);

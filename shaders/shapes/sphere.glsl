@@ -3,6 +3,26 @@
 // Discriminant as in Ray Tracing Gems ch. 7: a * (1 - |f_perp|^2) with
 // f_perp = o - (b/a) d, whose error grows with |o| instead of |o|^2, and the
 // smaller root from q = -(b + sign(b) sqrt(disc)) to avoid cancellation.
+#if VKRAY_PRECISION_NAIVE
+// Naive (textbook): A t^2 + B t + C = 0, disc = B^2 - 4AC, t = (-B -+ sqrt(disc)) / 2A.
+// B^2 and 4AC are both ~|o|^2 |d|^2: seen from |o| > ~4096 radii the
+// discriminant is rounding noise (NUMERICS.md section 1, failure A), and the
+// root (-B + sqrt(disc)) cancels when sqrt(disc) ~ |B| (failure B).
+bool sphereSpan(vec3 o, vec3 d, out float t0, out vec3 n0, out float t1, out vec3 n1) {
+    float A = dot(d, d);
+    float B = 2.0 * dot(o, d);
+    float C = dot(o, o) - 1.0;
+    float disc = B * B - 4.0 * A * C;
+    if (disc < 0.0) return false;
+    float root = sqrt(disc);
+    t0 = (-B - root) / (2.0 * A);
+    t1 = (-B + root) / (2.0 * A);
+    n0 = o + t0 * d;
+    n1 = o + t1 * d;
+    return true;
+}
+#else
+// Robust (Ray Tracing Gems ch. 7, Haines et al.):
 bool sphereSpan(vec3 o, vec3 d, out float t0, out vec3 n0, out float t1, out vec3 n1) {
     float a = dot(d, d);
     float b = dot(o, d);  // half of the textbook b
@@ -18,6 +38,7 @@ bool sphereSpan(vec3 o, vec3 d, out float t0, out vec3 n0, out float t1, out vec
     n1 = o + t1 * d;
     return true;
 }
+#endif
 
 bool intersectSphere(vec3 o, vec3 d, float tMin, float tMax, out float t, out vec3 normal) {
     float t0, t1;

@@ -86,6 +86,31 @@ int quarticRoots(float c[5], float lo, float hi, out float roots[4]) {
 
 // Every crossing of the torus along the whole line o + d t, ascending in t,
 // with the outward normal at each; returns how many (0, 2 or 4 in general).
+#if VKRAY_PRECISION_NAIVE
+// Naive (textbook): the quartic's coefficients straight from the ray's own
+// origin and direction. They grow like |o|^4 and cancel: from 100 units away
+// about half the hits flip (NUMERICS.md section 6). Same root finder, no
+// origin shift, no unit direction, no polish.
+int torusRoots(vec3 o, vec3 d, out float ts[4], out vec3 normals[4]) {
+    const float R = TORUS_MAJOR_RADIUS, r = TORUS_TUBE_RADIUS;
+    float boundRadius = 1.01 * (R + r);
+    float G = dot(d, d), H = dot(o, d), K = dot(o, o) + R * R - r * r;
+    float disc = H * H - G * (dot(o, o) - boundRadius * boundRadius);
+    if (disc <= 0.0) return 0;
+    float lo = (-H - sqrt(disc)) / G, hi = (-H + sqrt(disc)) / G;
+    float a2 = d.x * d.x + d.y * d.y, a1 = o.x * d.x + o.y * d.y, a0 = o.x * o.x + o.y * o.y;
+    float c[5] = float[5](K * K - 4.0 * R * R * a0, 4.0 * H * K - 8.0 * R * R * a1,
+                          4.0 * H * H + 2.0 * G * K - 4.0 * R * R * a2, 4.0 * G * H, G * G);
+    int n = quarticRoots(c, lo, hi, ts);
+    for (int i = 0; i < n; ++i) {
+        vec3 p = o + ts[i] * d;
+        float k = dot(p, p) + R * R - r * r;
+        normals[i] = 4.0 * k * p - 8.0 * R * R * vec3(p.xy, 0.0);
+    }
+    return n;
+}
+#else
+// Robust: origin shifted to the bounding sphere, unit direction, polish on F.
 int torusRoots(vec3 o, vec3 d, out float ts[4], out vec3 normals[4]) {
     const float R = TORUS_MAJOR_RADIUS, r = TORUS_TUBE_RADIUS;
     float dLength = sqrt(dot(d, d));
@@ -122,6 +147,7 @@ int torusRoots(vec3 o, vec3 d, out float ts[4], out vec3 normals[4]) {
     }
     return n;
 }
+#endif
 
 bool intersectTorus(vec3 o, vec3 d, float tMin, float tMax, out float t, out vec3 normal) {
     float ts[4];

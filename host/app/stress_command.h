@@ -1,0 +1,16 @@
+// `vkray stress` and `vkray report SCENE` (issue #6): precision modes against
+// the long-double oracle over scenes/stress/, and error against run time over
+// the knobs that trade them for one scene. Both print a table and write CSV,
+// JSON and a self-contained HTML page with SVG plots.
+#pragma once
+
+#include "app/options.h"
+
+#include <iosfwd>
+
+namespace vkray {
+
+int runStress(const Options& options, std::ostream& out, std::ostream& err);
+int runReport(const Options& options, std::ostream& out, std::ostream& err);
+
+}  // namespace vkray

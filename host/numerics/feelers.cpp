@@ -1,0 +1,187 @@
+// Compiled with -fno-tree-slp-vectorize (CMakeLists.txt): GCC 12's SLP
+// vectoriser has been seen to drop a double -> float -> double rounding
+// (NUMERICS.md section 9), and this file must round exactly as float does.
+#include "numerics/feelers.h"
+
+#include "scene/error.h"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+namespace vkray::numerics {
+
+namespace {
+
+using FVec = Vec3<float>;
+
+FVec toFloat(const glm::dvec3& v) { return {float(v.x), float(v.y), float(v.z)}; }
+FVec toFloat(const RVec& v) { return {float(v.x), float(v.y), float(v.z)}; }
+RVec toReal(const glm::dvec3& v) { return {Real(v.x), Real(v.y), Real(v.z)}; }
+
+// An object's M^-1 as the GPU holds it: three float rows of an affine map.
+struct FloatObject {
+    float rows[3][4];
+    const SceneObject* object;
+
+    explicit FloatObject(const SceneObject& o) : object(&o) {
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c) rows[r][c] = float(o.objectFromWorld[c][r]);
+    }
+    FVec point(FVec p) const {
+        FVec out;
+        for (int r = 0; r < 3; ++r)
+            out[r] = rows[r][0] * p.x + rows[r][1] * p.y + rows[r][2] * p.z + rows[r][3];
+        return out;
+    }
+    FVec vector(FVec d) const {
+        FVec out;
+        for (int r = 0; r < 3; ++r) out[r] = rows[r][0] * d.x + rows[r][1] * d.y + rows[r][2] * d.z;
+        return out;
+    }
+};
+
+Crossings<float> floatCrossings(const FloatObject& f, FVec origin, FVec direction) {
+    const FVec o = f.point(origin), d = f.vector(direction);
+    switch (f.object->type) {
+    case ShapeType::Sphere: return sphereCrossings(o, d);
+    case ShapeType::Plane: return planeCrossings(o, d, false);
+    case ShapeType::Square: return planeCrossings(o, d, true);
+    case ShapeType::Cube: return cubeCrossings(o, d);
+    case ShapeType::Cylinder: return taperedCylinderCrossings(o, d, 1.0f);
+    case ShapeType::Cone: return taperedCylinderCrossings(o, d, 0.0f);
+    case ShapeType::TaperedCylinder: return taperedCylinderCrossings(o, d, float(f.object->taper));
+    case ShapeType::Torus:
+        return torusCrossings(o, d, float(kTorusMajorRadius), float(kTorusTubeRadius));
+    default: throw Error("internal: no float intersector for this shape");
+    }
+}
+
+// The first crossing with tMin < t < tMax, or -1.
+float firstCrossing(const Crossings<float>& c, float tMin, float tMax) {
+    for (int i = 0; i < c.count; ++i)
+        if (c.at[i].t > tMin && c.at[i].t < tMax) return c.at[i].t;
+    return -1;
+}
+
+constexpr float kNaiveEpsilon = 1e-4f;  // shaders/precision.glsl NAIVE_EPSILON
+
+FVec offsetOrigin(Precision precision, FVec p, FVec n) {
+    return precision == Precision::Naive ? p + kNaiveEpsilon * n : offsetRayOriginRtg6(p, n);
+}
+
+float tMinOf(Precision precision) { return precision == Precision::Naive ? kNaiveEpsilon : 0.0f; }
+
+// What the replay of one pixel needs, in the mode's world and in the oracle's.
+struct PixelSetup {
+    FVec p, n, d;    // float hit point, normal (facing the ray), ray direction
+    RVec pTrue, nTrue, dTrue;
+    Real tTrue;      // the primary hit's distance
+    const SceneObject* original;  // the object as the scene has it (for the oracle)
+};
+
+// The pixels both agree on (same object, outside the float band), with the
+// mode's float hit point.
+template <typename Visit>
+void forAgreeingPixels(const Scene& scene, const CameraBasis& camera,
+                       const std::vector<OraclePixel>& oracle,
+                       const std::vector<ModeSample>& samples, Precision precision, Visit visit) {
+    requireImplemented(precision);
+    const GpuInputs mode = prepareGpuInputs(precision, scene, camera);
+    std::vector<FloatObject> objects;
+    for (const SceneObject& object : mode.scene.objects) objects.emplace_back(object);
+    const FVec eye = toFloat(mode.camera.eye);
+    const RVec eyeTrue = toReal(camera.eye);
+    for (size_t i = 0; i < oracle.size(); ++i) {
+        const OraclePixel& o = oracle[i];
+        const ModeSample& s = samples[i];
+        if (o.silhouette[0] || o.hit.id < 0 || s.id != o.hit.id || !std::isfinite(s.t)) continue;
+        PixelSetup px;
+        px.d = toFloat(o.direction);
+        px.p = eye + float(s.t) * px.d;
+        px.n = toFloat(s.normal);
+        px.dTrue = o.direction;
+        px.pTrue = eyeTrue + o.hit.t * o.direction;
+        px.nTrue = o.hit.normal;
+        px.tTrue = o.hit.t;
+        px.original = &scene.objects[size_t(s.id)];
+        visit(px, objects[size_t(s.id)], mode.scene);
+    }
+}
+
+}  // namespace
+
+Vec3<float> offsetRayOriginRtg6(Vec3<float> p, Vec3<float> n) {
+    constexpr float kOrigin = 1.0f / 32.0f;      // below this, spacings are too small: add a fixed offset
+    constexpr float kFloatScale = 1.0f / 65536.0f;
+    constexpr float kIntScale = 256.0f;          // float spacings per unit of normal
+    FVec out;
+    for (int i = 0; i < 3; ++i) {
+        const std::int32_t steps = std::int32_t(kIntScale * n[i]);
+        const std::int32_t bits = std::bit_cast<std::int32_t>(p[i]);
+        // Moving away from zero is + on the bit pattern of a positive float, - on a negative one.
+        const float moved = std::bit_cast<float>(bits + (p[i] < 0 ? -steps : steps));
+        out[i] = std::abs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : moved;
+    }
+    return out;
+}
+
+FeelerStats shadowFeelerAcne(const Scene& scene, const CameraBasis& camera,
+                             const std::vector<OraclePixel>& oracle,
+                             const std::vector<ModeSample>& samples, Precision precision) {
+    FeelerStats stats;
+    forAgreeingPixels(scene, camera, oracle, samples, precision,
+                      [&](const PixelSetup& px, const FloatObject& object, const Scene& modeScene) {
+        bool traced = false, failed = false;
+        for (size_t l = 0; l < scene.lights.size(); ++l) {
+            const FVec toLight = toFloat(modeScene.lights[l].position) - px.p;
+            const RVec toLightTrue = toReal(scene.lights[l].position) - px.pTrue;
+            if (!(dot(px.n, toLight) > 0) || !(dot(px.nTrue, toLightTrue) > 0)) continue;
+            traced = true;
+            const FVec origin = offsetOrigin(precision, px.p, px.n);
+            const float t = firstCrossing(floatCrossings(object, origin, toLight), tMinOf(precision), 1.0f);
+            if (t < 0) continue;
+            // A real crossing of the same surface near that t (a torus shadowing itself)?
+            const Crossings<Real> truth = objectCrossings(*px.original, {px.pTrue, toLightTrue});
+            bool genuine = false;
+            for (int k = 0; k < truth.count; ++k)
+                genuine = genuine || (truth.at[k].t > Real(t) / 2 && truth.at[k].t < Real(t) * 2);
+            failed = failed || !genuine;
+        }
+        stats.traced += traced;
+        stats.failed += failed;
+    });
+    return stats;
+}
+
+FeelerStats refractionExitErrors(const Scene& scene, const CameraBasis& camera,
+                                 const std::vector<OraclePixel>& oracle,
+                                 const std::vector<ModeSample>& samples, Precision precision) {
+    FeelerStats stats;
+    constexpr double kEta = 1.0 / 1.5;  // from air into glass
+    forAgreeingPixels(scene, camera, oracle, samples, precision,
+                      [&](const PixelSetup& px, const FloatObject& object, const Scene&) {
+        // Snell's law with n facing the incoming ray: t = eta d + (eta c - sqrt(k)) n.
+        const auto refract = [](auto d, auto n, auto eta) {
+            const auto c = -dot(d, n);
+            const auto k = 1 - eta * eta * (1 - c * c);
+            return eta * d + (eta * c - std::sqrt(k)) * n;
+        };
+        const FVec dIn = refract(px.d, px.n, float(kEta));
+        const RVec dInTrue = refract(px.dTrue, px.nTrue, Real(kEta));
+        // The exit the oracle finds: the first crossing beyond the entry point itself.
+        const Crossings<Real> truth = objectCrossings(*px.original, {px.pTrue, dInTrue});
+        Real exitTrue = -1;
+        for (int k = 0; k < truth.count && exitTrue < 0; ++k)
+            if (truth.at[k].t > Real(1e-6) * px.tTrue) exitTrue = truth.at[k].t;
+        if (exitTrue < 0) return;  // grazing entry: no path through
+        ++stats.traced;
+        const FVec origin = offsetOrigin(precision, px.p, -1.0f * px.n);
+        const float exit = firstCrossing(floatCrossings(object, origin, dIn), tMinOf(precision),
+                                         std::numeric_limits<float>::infinity());
+        stats.failed += !(exit > 0 && std::abs(Real(exit) - exitTrue) <= Real(1e-3) * exitTrue);
+    });
+    return stats;
+}
+
+}  // namespace vkray::numerics

@@ -1,0 +1,52 @@
+// Secondary rays replayed in float on the CPU, from the hit points a GPU
+// precision mode rendered, to count what the GPU's secondary rays would
+// suffer (the shader of this branch traces primary rays only):
+//
+//   shadowFeelerAcne      a feeler from each hit toward each light that lights
+//                         it (n.s > 0 for both the mode's and the oracle's
+//                         normal) that hits the surface it starts on, where
+//                         the oracle finds no crossing near that t: acne.
+//   refractionExitErrors  the ray refracted into the hit object (index 1.5)
+//                         must leave it where the oracle says (relative 1e-3);
+//                         re-hitting the entry point or missing the exit
+//                         fails.
+//
+// Replayed as the mode would: hit point p = eye + t d in float in the mode's
+// world (rebased on the eye for robust), the object's float M^-1 (float
+// inverse for naive), the origin offset along the normal by the fixed
+// epsilon 1e-4 (naive, with tMin 1e-4) or as Ray Tracing Gems ch. 6
+// (robust, tMin 0), and intersected with the robust float formulas of
+// numerics/generic_shapes.h (IEEE single, no contraction).
+#pragma once
+
+#include "numerics/oracle.h"
+#include "numerics/precision.h"
+#include "numerics/stress_suite.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace vkray::numerics {
+
+struct FeelerStats {
+    std::size_t traced = 0;  // pixels with at least one secondary ray
+    std::size_t failed = 0;  // pixels where one of them failed
+};
+
+// Only pixels where the mode and the oracle hit the same object outside the
+// float band are used.
+FeelerStats shadowFeelerAcne(const Scene& scene, const CameraBasis& camera,
+                             const std::vector<OraclePixel>& oracle,
+                             const std::vector<ModeSample>& samples, Precision precision);
+
+FeelerStats refractionExitErrors(const Scene& scene, const CameraBasis& camera,
+                                 const std::vector<OraclePixel>& oracle,
+                                 const std::vector<ModeSample>& samples, Precision precision);
+
+// Ray Tracing Gems ch. 6 (Waechter and Binder): p moved off the surface along
+// n by about 256 float spacings of each coordinate (a fixed 1/65536 near the
+// origin, where spacings vanish). n is the geometric normal on the side the
+// new ray leaves from.
+Vec3<float> offsetRayOriginRtg6(Vec3<float> p, Vec3<float> n);
+
+}  // namespace vkray::numerics

@@ -1,0 +1,62 @@
+#include "numerics/stress_report.h"
+
+#include <algorithm>
+
+namespace vkray::numerics {
+
+Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<StressCase>& cases,
+                    const std::string& command, const std::string& device) {
+    Report report;
+    report.title = "vkray stress";
+    report.paragraphs = {
+        "`" + command + "` on " + device + ". Every case of scenes/stress/ in each precision "
+        "mode (naive, robust, fp64 on the GPU; the double CPU reference) against a long-double "
+        "oracle, pixel by pixel.",
+        "silhouette: pixels whose oracle object changes when the ray turns by 8 units in the last "
+        "place of the mode's arithmetic (float for GPU modes, double for the CPU); left out of "
+        "the other columns. flips: hit against miss. wrong id: both hit, different objects. "
+        "t err: relative distance error beyond what that turn explains, over pixels where both "
+        "hit the same object (max and RMS). normal err: the same for the normal, radians. acne: "
+        "pixels whose shadow feelers (or, for refraction cases, refracted exit rays), replayed "
+        "in float from the mode's hit points, hit the surface they start on; of: pixels with a "
+        "feeler. time: the fastest of three GPU renders, or the CPU tracing.",
+        "Plots: one per case, a point per mode, x the render time and y the largest relative t "
+        "error (0 is drawn below the lowest decade). Lower left is better; the dashed line is the "
+        "Pareto front. Hollow red points are modes with flips, wrong ids or acne."};
+    report.table.columns = {"case",         "mode",          "time s",      "silhouette",
+                            "flips",        "wrong id",      "t err max",   "t err rms",
+                            "normal err max", "normal err rms", "acne",     "of",
+                            "naive built to fail", "note"};
+    using V = ReportValue;
+    for (const ModeMetrics& m : rows) {
+        const auto c = std::find_if(cases.begin(), cases.end(),
+                                    [&](const StressCase& sc) { return sc.name == m.caseName; });
+        const bool naiveFails = c != cases.end() && c->naiveFails;
+        const bool feelers = m.ran && m.mode != kCpuDoubleMode;
+        report.table.rows.push_back({
+            V::str(m.caseName), V::str(m.mode), m.ran ? V::num(m.seconds) : V{},
+            m.ran ? V::whole((long long)m.silhouette) : V{}, m.ran ? V::whole((long long)m.flips) : V{},
+            m.ran ? V::whole((long long)m.wrongId) : V{}, m.ran ? V::num(m.tErrMax) : V{},
+            m.ran ? V::num(m.tErrRms) : V{}, m.ran ? V::num(m.normalErrMax) : V{},
+            m.ran ? V::num(m.normalErrRms) : V{}, feelers ? V::whole((long long)m.acne) : V{},
+            feelers ? V::whole((long long)m.feelers) : V{}, V::str(naiveFails ? "yes" : "no"),
+            V::str(m.note)});
+    }
+    for (const StressCase& c : cases)
+        report.paragraphs.push_back(c.name + ": " + c.title + ". Stiff: " + c.stiff +
+                                    " Correct: " + c.correct);
+    for (const StressCase& c : cases) {
+        Plot plot;
+        plot.title = c.name;
+        plot.xLabel = "render time (s)";
+        plot.yLabel = "max relative t error";
+        for (const ModeMetrics& m : rows) {
+            if (m.caseName != c.name || !m.ran) continue;
+            plot.points.push_back({m.mode, m.seconds, m.tErrMax, m.flips + m.wrongId + m.acne > 0});
+        }
+        report.plots.push_back(plot);
+    }
+    return report;
+}
+
+}  // namespace vkray::numerics
