@@ -80,21 +80,27 @@ int quadraticRoots(T A, T B, T C, T roots[2]) {
 // ---- Sphere x^2 + y^2 + z^2 = 1 ------------------------------------------
 // Ray Tracing Gems ch. 7: the discriminant a (1 - |f_perp|^2) from the line's
 // point nearest the centre (no |o|^2 cancellation) and the stable root pair
-// c / q, q / a (no cancellation in the root near the origin).
+// c / q, q / a (no cancellation in the root near the origin). f_perp is
+// projected twice (the rounding of the first projection lies along d) and the
+// normals are f_perp -+ h d: both keep huge anisotropy (|o| ~ 1e8 generic
+// radii along one axis) from cancelling to noise, as in shapes/sphere.glsl.
 template <typename T>
 Crossings<T> sphereCrossings(Vec3<T> o, Vec3<T> d) {
     Crossings<T> out;
     const T a = dot(d, d);
     const T b = dot(o, d);
-    const Vec3<T> fPerp = o - (b / a) * d;
+    Vec3<T> fPerp = o - (b / a) * d;
+    fPerp = fPerp - (dot(fPerp, d) / a) * d;
     const T disc = a * (1 - dot(fPerp, fPerp));
     if (disc < 0) return out;
-    const T q = -(b + std::copysign(std::sqrt(disc), b));
+    const T root = std::sqrt(disc);
+    const T q = -(b + std::copysign(root, b));
     if (q == 0) return out;  // o at the centre and d = 0: no ray
     T t0 = (dot(o, o) - 1) / q, t1 = q / a;
     if (t0 > t1) std::swap(t0, t1);
-    out.add(t0, o + t0 * d);
-    out.add(t1, o + t1 * d);
+    const Vec3<T> halfChord = (root / a) * d;
+    out.add(t0, fPerp - halfChord);
+    out.add(t1, fPerp + halfChord);
     return out;
 }
 

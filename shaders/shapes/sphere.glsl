@@ -22,20 +22,31 @@ bool sphereSpan(vec3 o, vec3 d, out float t0, out vec3 n0, out float t1, out vec
     return true;
 }
 #else
-// Robust (Ray Tracing Gems ch. 7, Haines et al.):
+// Robust (Ray Tracing Gems ch. 7, Haines et al.): the discriminant from the
+// line's point nearest the centre, f_perp, and the stable root pair c / q,
+// q / a. Two additions of ours for huge anisotropy (a sphere squashed by 1e-8,
+// seen from 1e8 generic radii along the squashed axis):
+// - f_perp is projected a second time: rounding t_c d in o - t_c d leaves an
+//   error of u |o| along d, which the second projection removes (one step of
+//   iterative refinement);
+// - the normals are f_perp -+ h d (h the half chord in t), not o + t d, which
+//   would cancel to noise the same way.
 bool sphereSpan(vec3 o, vec3 d, out float t0, out vec3 n0, out float t1, out vec3 n1) {
     float a = dot(d, d);
     float b = dot(o, d);  // half of the textbook b
     vec3 fPerp = o - (b / a) * d;
+    fPerp -= (dot(fPerp, d) / a) * d;
     float disc = a * (1.0 - dot(fPerp, fPerp));
     if (disc < 0.0) return false;
-    float q = -(b + (b >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
+    float root = sqrt(disc);
+    float q = -(b + (b >= 0.0 ? 1.0 : -1.0) * root);
     float c = dot(o, o) - 1.0;
     t0 = c / q;
     t1 = q / a;
     if (t0 > t1) { float s = t0; t0 = t1; t1 = s; }
-    n0 = o + t0 * d;
-    n1 = o + t1 * d;
+    vec3 halfChord = (root / a) * d;
+    n0 = fPerp - halfChord;
+    n1 = fPerp + halfChord;
     return true;
 }
 #endif
