@@ -138,11 +138,14 @@ FeelerStats shadowFeelerAcne(const Scene& scene, const CameraBasis& camera,
             const RVec toLightTrue = toReal(scene.lights[l].position) - px.pTrue;
             if (!(dot(px.n, toLight) > 0) || !(dot(px.nTrue, toLightTrue) > 0)) continue;
             traced = true;
+            // Unit direction: t and the fixed epsilon are world distances.
+            const float distance = length(toLight);
             const FVec origin = offsetOrigin(precision, px.p, px.n);
-            const float t = firstCrossing(floatCrossings(object, origin, toLight), tMinOf(precision), 1.0f);
+            const float t = firstCrossing(floatCrossings(object, origin, toLight / distance),
+                                          tMinOf(precision), distance);
             if (t < 0) continue;
             // A real crossing of the same surface near that t (a torus shadowing itself)?
-            const Crossings<Real> truth = objectCrossings(*px.original, {px.pTrue, toLightTrue});
+            const Crossings<Real> truth = objectCrossings(*px.original, {px.pTrue, normalize(toLightTrue)});
             bool genuine = false;
             for (int k = 0; k < truth.count; ++k)
                 genuine = genuine || (truth.at[k].t > Real(t) / 2 && truth.at[k].t < Real(t) * 2);

@@ -2,7 +2,8 @@
 // precision mode rendered, to count what the GPU's secondary rays would
 // suffer (the shader of this branch traces primary rays only):
 //
-//   shadowFeelerAcne      a feeler from each hit toward each light that lights
+//   shadowFeelerAcne      a feeler (unit direction, t up to the light's distance)
+//                         from each hit toward each light that lights
 //                         it (n.s > 0 for both the mode's and the oracle's
 //                         normal) that hits the surface it starts on, where
 //                         the oracle finds no crossing near that t: acne.

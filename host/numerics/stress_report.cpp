@@ -19,14 +19,16 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
         "hit the same object (max and RMS). normal err: the same for the normal, radians. acne: "
         "pixels whose shadow feelers (or, for refraction cases, refracted exit rays), replayed "
         "in float from the mode's hit points, hit the surface they start on; of: pixels with a "
-        "feeler. time: the fastest of three GPU renders, or the CPU tracing.",
+        "feeler. time: the fastest of three GPU renders, or the CPU tracing. verdict: pass when "
+        "there are no flips, wrong ids or acne and the t and normal errors are at most 1e-5 "
+        "(float modes) or 1e-8 and 1e-7 (double).",
         "Plots: one per case, a point per mode, x the render time and y the largest relative t "
         "error (0 is drawn below the lowest decade). Lower left is better; the dashed line is the "
         "Pareto front. Hollow red points are modes with flips, wrong ids or acne."};
     report.table.columns = {"case",         "mode",          "time s",      "silhouette",
                             "flips",        "wrong id",      "t err max",   "t err rms",
                             "normal err max", "normal err rms", "acne",     "of",
-                            "naive built to fail", "note"};
+                            "verdict", "naive built to fail", "note"};
     using V = ReportValue;
     for (const ModeMetrics& m : rows) {
         const auto c = std::find_if(cases.begin(), cases.end(),
@@ -39,7 +41,8 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
             m.ran ? V::whole((long long)m.wrongId) : V{}, m.ran ? V::num(m.tErrMax) : V{},
             m.ran ? V::num(m.tErrRms) : V{}, m.ran ? V::num(m.normalErrMax) : V{},
             m.ran ? V::num(m.normalErrRms) : V{}, feelers ? V::whole((long long)m.acne) : V{},
-            feelers ? V::whole((long long)m.feelers) : V{}, V::str(naiveFails ? "yes" : "no"),
+            feelers ? V::whole((long long)m.feelers) : V{},
+            m.ran ? V::str(withinBounds(m) ? "pass" : "FAIL") : V{}, V::str(naiveFails ? "yes" : "no"),
             V::str(m.note)});
     }
     for (const StressCase& c : cases)

@@ -143,6 +143,13 @@ std::vector<StressCase> findStressCases(const std::string& directory, const std:
     return cases;
 }
 
+bool withinBounds(const ModeMetrics& m) {
+    const bool isDouble = m.mode == kCpuDoubleMode;
+    return m.ran && m.flips == 0 && m.wrongId == 0 && m.acne == 0 &&
+           m.tErrMax <= (isDouble ? kDoubleTErrorBound : kFloatTErrorBound) &&
+           m.normalErrMax <= (isDouble ? kDoubleNormalErrorBound : kFloatNormalErrorBound);
+}
+
 ModeMetrics compareWithOracle(const std::vector<OraclePixel>& oracle,
                               const std::vector<ModeSample>& samples, int band) {
     if (oracle.size() != samples.size()) throw Error("internal: oracle and samples differ in size");

@@ -66,6 +66,14 @@ struct ModeMetrics {
     std::size_t feelers = 0, acne = 0;  // feelers: how many were traced
 };
 
+// The bounds a mode must meet on a case to pass it: no flips, no wrong ids,
+// no acne, and t and normal errors (beyond the band) within these.
+inline constexpr double kFloatTErrorBound = 1e-5;       // relative, float modes
+inline constexpr double kFloatNormalErrorBound = 1e-5;  // radians
+inline constexpr double kDoubleTErrorBound = 1e-8;      // the double CPU reference
+inline constexpr double kDoubleNormalErrorBound = 1e-7;
+bool withinBounds(const ModeMetrics& metrics);
+
 // What a renderer gave for one pixel.
 struct ModeSample {
     double t;  // +inf on a miss
