@@ -144,11 +144,15 @@ FeelerStats shadowFeelerAcne(const Scene& scene, const CameraBasis& camera,
             const float t = firstCrossing(floatCrossings(object, origin, toLight / distance),
                                           tMinOf(precision), distance);
             if (t < 0) continue;
-            // A real crossing of the same surface near that t (a torus shadowing itself)?
+            // Acne only if the exact feeler is not shadowed by this surface at all:
+            // a torus may shadow itself, and near its terminator, on the saddle
+            // side, a grazing feeler meets it again a little further on. (The
+            // exact origin's own crossing, at |t| ~ 1e-18, is not counted.)
             const Crossings<Real> truth = objectCrossings(*px.original, {px.pTrue, normalize(toLightTrue)});
+            const Real tiny = Real(1e-6) * px.tTrue, far = length(toLightTrue);
             bool genuine = false;
             for (int k = 0; k < truth.count; ++k)
-                genuine = genuine || (truth.at[k].t > Real(t) / 2 && truth.at[k].t < Real(t) * 2);
+                genuine = genuine || (truth.at[k].t > tiny && truth.at[k].t < far);
             failed = failed || !genuine;
         }
         stats.traced += traced;

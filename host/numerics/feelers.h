@@ -6,7 +6,7 @@
 //                         from each hit toward each light that lights
 //                         it (n.s > 0 for both the mode's and the oracle's
 //                         normal) that hits the surface it starts on, where
-//                         the oracle finds no crossing near that t: acne.
+//                         the exact feeler from the exact point does not: acne.
 //   refractionExitErrors  the ray refracted into the hit object (index 1.5)
 //                         must leave it where the oracle says (relative 1e-3);
 //                         re-hitting the entry point or missing the exit

@@ -21,7 +21,7 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
         "in float from the mode's hit points, hit the surface they start on; of: pixels with a "
         "feeler. time: the fastest of three GPU renders, or the CPU tracing. verdict: pass when "
         "there are no flips, wrong ids or acne and the t and normal errors are at most 1e-5 "
-        "(float modes) or 1e-8 and 1e-7 (double).",
+        "(float modes) or 1e-7 and 1e-6 (double).",
         "Plots: one per case, a point per mode, x the render time and y the largest relative t "
         "error (0 is drawn below the lowest decade). Lower left is better; the dashed line is the "
         "Pareto front. Hollow red points are modes with flips, wrong ids or acne."};
