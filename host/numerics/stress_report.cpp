@@ -15,8 +15,8 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
         "silhouette: pixels whose oracle object changes when the ray turns by 8 units in the last "
         "place of the mode's arithmetic (float for GPU modes, double for the CPU); left out of "
         "the other columns. flips: hit against miss. wrong id: both hit, different objects. "
-        "t err: relative distance error beyond what that turn explains, over pixels where both "
-        "hit the same object (max and RMS). normal err: the same for the normal, radians. acne: "
+        "compared: pixels where both hit the same object; over these, t err is the relative "
+        "distance error beyond what that turn explains (max and RMS) and normal err: the same for the normal, radians. acne: "
         "pixels whose shadow feelers (or, for refraction cases, refracted exit rays), replayed "
         "in float from the mode's hit points, hit the surface they start on; of: pixels with a "
         "feeler. time: the fastest of three GPU renders, or the CPU tracing. verdict: pass when "
@@ -26,7 +26,7 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
         "error (0 is drawn below the lowest decade). Lower left is better; the dashed line is the "
         "Pareto front. Hollow red points are modes with flips, wrong ids or acne."};
     report.table.columns = {"case",         "mode",          "time s",      "silhouette",
-                            "flips",        "wrong id",      "t err max",   "t err rms",
+                            "flips",        "wrong id",      "compared",    "t err max",   "t err rms",
                             "normal err max", "normal err rms", "acne",     "of",
                             "verdict", "naive built to fail", "note"};
     using V = ReportValue;
@@ -35,12 +35,14 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
                                     [&](const StressCase& sc) { return sc.name == m.caseName; });
         const bool naiveFails = c != cases.end() && c->naiveFails;
         const bool feelers = m.ran && m.mode != kCpuDoubleMode;
+        const bool compared = m.ran && m.compared > 0;  // errors exist only where both hit one object
         report.table.rows.push_back({
             V::str(m.caseName), V::str(m.mode), m.ran ? V::num(m.seconds) : V{},
             m.ran ? V::whole((long long)m.silhouette) : V{}, m.ran ? V::whole((long long)m.flips) : V{},
-            m.ran ? V::whole((long long)m.wrongId) : V{}, m.ran ? V::num(m.tErrMax) : V{},
-            m.ran ? V::num(m.tErrRms) : V{}, m.ran ? V::num(m.normalErrMax) : V{},
-            m.ran ? V::num(m.normalErrRms) : V{}, feelers ? V::whole((long long)m.acne) : V{},
+            m.ran ? V::whole((long long)m.wrongId) : V{}, m.ran ? V::whole((long long)m.compared) : V{},
+            compared ? V::num(m.tErrMax) : V{}, compared ? V::num(m.tErrRms) : V{},
+            compared ? V::num(m.normalErrMax) : V{}, compared ? V::num(m.normalErrRms) : V{},
+            feelers ? V::whole((long long)m.acne) : V{},
             feelers ? V::whole((long long)m.feelers) : V{},
             m.ran ? V::str(withinBounds(m) ? "pass" : "FAIL") : V{}, V::str(naiveFails ? "yes" : "no"),
             V::str(m.note)});
