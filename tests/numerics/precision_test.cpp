@@ -1,6 +1,7 @@
 // Precision modes: parsing, fp64's refusal, what each mode does to the scene
 // on the host (rebasing keeps every generic ray; float inverses break
 // ill-conditioned transforms), the naive shader variants, and renders.
+#include "app/options.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/shader_variant.h"
 #include "numerics/precision.h"
@@ -164,6 +165,35 @@ TEST_F(PrecisionCli, RenderTakesPrecisionAndRefusesFp64) {
     test::RunResult bad = test::vkray("render " + s + " --precision half");
     EXPECT_EQ(bad.status, 1);
     EXPECT_NE(bad.output.find("expected naive, robust or fp64"), std::string::npos) << bad.output;
+}
+
+}  // namespace
+}  // namespace vkray
+
+namespace vkray {
+namespace {
+
+TEST(PrecisionOptions, StressAndReportTakeTheirFlagsOnly) {
+    Options o = parseOptions({"render", "s.sdl", "--precision", "naive"});
+    EXPECT_EQ(o.precision, Precision::Naive);
+    EXPECT_TRUE(o.precisionGiven);
+    o = parseOptions({"pixel", "s.sdl", "1", "2", "--precision=robust"});
+    EXPECT_EQ(o.precision, Precision::Robust);
+    o = parseOptions({"stress", "--cases", "torus", "--size", "32x24", "--out", "d", "--cases-dir", "c"});
+    EXPECT_EQ(o.command, Command::Stress);
+    EXPECT_EQ(o.casesPattern, "torus");
+    EXPECT_EQ(o.outDirectory, "d");
+    EXPECT_EQ(o.casesDirectory, "c");
+    EXPECT_EQ(o.width, 32);
+    o = parseOptions({"report", "s.sdl", "--out", "r", "--fov", "40"});
+    EXPECT_EQ(o.command, Command::Report);
+    EXPECT_EQ(o.scenePath, "s.sdl");
+    EXPECT_THROW(parseOptions({"render", "s.sdl", "--out", "d"}), Error);
+    EXPECT_THROW(parseOptions({"stress", "--precision", "naive"}), Error);  // stress runs every mode
+    EXPECT_THROW(parseOptions({"report", "s.sdl", "--block", "2"}), Error);  // report sweeps the block
+    EXPECT_THROW(parseOptions({"report"}), Error);
+    EXPECT_THROW(parseOptions({"stress", "extra"}), Error);
+    EXPECT_THROW(parseOptions({"render", "s.sdl", "--precision", "half"}), Error);
 }
 
 }  // namespace
