@@ -117,7 +117,7 @@ Vec3<float> offsetRayOriginRtg6(Vec3<float> p, Vec3<float> n) {
     constexpr float kIntScale = 256.0f;          // float spacings per unit of normal
     FVec out;
     for (int i = 0; i < 3; ++i) {
-        const std::int32_t steps = std::int32_t(kIntScale * n[i]);
+        const std::int32_t steps = std::isfinite(n[i]) ? std::int32_t(kIntScale * n[i]) : 0;
         const std::int32_t bits = std::bit_cast<std::int32_t>(p[i]);
         // Moving away from zero is + on the bit pattern of a positive float, - on a negative one.
         const float moved = std::bit_cast<float>(bits + (p[i] < 0 ? -steps : steps));
