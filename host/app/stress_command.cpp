@@ -8,6 +8,7 @@
 #include "scene/error.h"
 #include "scene/scene_geometry.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <ostream>
 
@@ -73,7 +74,22 @@ int runStress(const Options& o, std::ostream& out, std::ostream& err) {
     const numerics::Report report = numerics::stressReport(rows, cases, commandLine(o, "stress"), device);
     out << numerics::formatTable(report.table);
     numerics::writeReportFiles(report, outDirectory, "stress", out);
-    return 0;
+    // Robust and double must pass every case; naive must fail those built to break it.
+    int failures = 0, checked = 0;
+    for (const numerics::ModeMetrics& m : rows) {
+        if (!m.ran) continue;
+        const auto c = std::find_if(cases.begin(), cases.end(),
+                                    [&](const numerics::StressCase& sc) { return sc.name == m.caseName; });
+        const bool expectPass = m.mode != "naive" || !c->naiveFails;
+        ++checked;
+        if (numerics::withinBounds(m) == expectPass) continue;
+        ++failures;
+        out << "unexpected: " << m.caseName << " " << m.mode
+            << (expectPass ? " is beyond its bounds\n" : " passes a case built to break it\n");
+    }
+    out << "result: " << checked - failures << " of " << checked << " rows as expected"
+        << (failures ? " (FAIL)\n" : " (PASS)\n");
+    return failures ? 2 : 0;
 }
 
 int runReport(const Options& o, std::ostream& out, std::ostream& err) {

@@ -150,6 +150,18 @@ TEST_F(NumericsCli, StressWritesTableCsvJsonHtml) {
     EXPECT_NO_THROW(test::JsonReader(readFile(dir / "out/stress.json")).document());
     EXPECT_EQ(test::xmlProblem(readFile(dir / "out/stress.html")), "");
 
+    EXPECT_NE(run.output.find("result: 3 of 3 rows as expected (PASS)"), std::string::npos) << run.output;
+
+    // A case that claims to break naive but does not: exit 2, named.
+    fs::create_directories(dir / "cases");
+    std::ofstream(dir / "cases/easy.sdl")
+        << "! stress: a unit sphere at the origin\n! stiff: nothing\n! correct: t = 4 at the centre\n"
+           "! naive: fails\ncamera eye 0 0 5 look 0 0 0 fov 40\nlight 5 5 5 1 1 1\nsphere\n";
+    test::RunResult easy = test::vkray("stress --size 24x18 --cases-dir " + path("cases") + " --out " + path("easy"));
+    EXPECT_EQ(easy.status, 2) << easy.output;
+    EXPECT_NE(easy.output.find("unexpected: easy naive passes a case built to break it"), std::string::npos)
+        << easy.output;
+
     test::RunResult none = test::vkray("stress --cases nothing-matches --cases-dir " +
                                        test::kSourceDir + "/scenes/stress --out " + path("none"));
     EXPECT_EQ(none.status, 1);
