@@ -139,10 +139,11 @@ bool accepts(Command command, const std::string& flag) {
                flag != "--all" && !numericsOnly;
     case Command::Stress:
         return flag == "--size" || flag == "--device" || flag == "--threads" ||
-               flag == "--shader-dir" || numericsOnly;
+               flag == "--shader-dir" || flag == "--precision" || numericsOnly;
     case Command::Report:
         return flag == "--size" || flag == "--device" || flag == "--threads" ||
                flag == "--shader-dir" || flag == "--out" || flag == "--lenient" ||
+               flag == "--precision" ||
                flag == "--eye" || flag == "--look" || flag == "--up" || flag == "--fov";
     case Command::Compare: return flag == "--diff" || flag == "--fail" || flag == "--failpercent";
     case Command::ShadersCheck: return flag == "--shader-dir" || flag == "--all";
@@ -187,7 +188,8 @@ render options:
   --watch               re-render when the scene, a file it reads or a shader changes
   -D NAME=VALUE         define for the shader compile (repeatable)
   --dump-spirv DIR      write the SPIR-V of the variant used to DIR
-  --precision MODE      naive, robust (default) or fp64: float care on the GPU (README "Numerics")
+  --precision MODE      naive, robust (default) or fp64: float care on the GPU (README "Numerics");
+                        for stress and report: only that mode (default: all)
 
 stress and report options:
   --out DIR             where the CSV, JSON and HTML go (default stress-report, report-SCENE)

@@ -66,6 +66,7 @@ int runStress(const Options& o, std::ostream& out, std::ostream& err) {
     options.height = o.height;
     options.shaderDirectory = shaderDirectoryFor(o);
     options.threads = o.threads;
+    if (o.precisionGiven) options.gpuModes = {o.precision};
     std::vector<numerics::ModeMetrics> rows;
     for (const numerics::StressCase& c : cases) {
         const std::vector<numerics::ModeMetrics> caseRows = numerics::runStressCase(c, &context, options, &err);
@@ -114,6 +115,7 @@ int runReport(const Options& o, std::ostream& out, std::ostream& err) {
     options.height = o.height;
     options.shaderDirectory = shaderDirectoryFor(o);
     options.threads = o.threads;
+    if (o.precisionGiven) options.precision = o.precision;
     const std::vector<numerics::SweepPoint> points = numerics::runSweep(scene, camera, context, options, &err);
     const numerics::Report report = numerics::sweepReport(o.scenePath, points, device);
     out << numerics::formatTable(report.table);

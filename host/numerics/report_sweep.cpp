@@ -75,6 +75,8 @@ std::vector<SweepPoint> runSweep(const Scene& scene, const Camera& camera, gpu::
     base.settings = {options.width, options.height, 1};
     std::vector<SweepPoint> points;
     combine(reportKnobs(), 0, base, {}, points);
+    if (options.precision)
+        std::erase_if(points, [&](const SweepPoint& p) { return p.config.precision != *options.precision; });
 
     // The reference of each size, rendered once (and itself a point: error 0).
     struct Reference {

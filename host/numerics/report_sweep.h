@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <functional>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,7 @@ struct SweepOptions {
     int width = 640, height = 480;
     std::string shaderDirectory;
     int threads = 0;  // CPU reference threads
+    std::optional<Precision> precision;  // only this mode (default: every value of the knob)
 };
 
 // Every combination of the knobs' values, then the CPU reference itself

@@ -177,6 +177,10 @@ TEST_F(NumericsCli, ReportWritesItsFilesAndNamesBadInput) {
     const auto csv = test::parseCsv(readFile(dir / "rep/report.csv"));
     EXPECT_EQ(csv.size(), 1u + 18u + 2u);
     EXPECT_EQ(test::xmlProblem(readFile(dir / "rep/report.html")), "");
+    test::RunResult robust = test::vkray("report " + s + " --size 24x18 --precision robust --out " + path("rob"));
+    ASSERT_EQ(robust.status, 0) << robust.output;
+    EXPECT_EQ(test::parseCsv(readFile(dir / "rob/report.csv")).size(), 1u + 6u + 2u);
+    EXPECT_EQ(robust.output.find("precision naive"), std::string::npos) << robust.output;
     test::RunResult bad = test::vkray("report " + scene("bad.sdl", "sphere frobnicate\n") + " --out " + path("x"));
     EXPECT_EQ(bad.status, 1);
     EXPECT_NE(bad.output.find("bad.sdl:1:8"), std::string::npos) << bad.output;
