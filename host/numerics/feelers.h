@@ -8,9 +8,10 @@
 //                         normal) that hits the surface it starts on, where
 //                         the exact feeler from the exact point does not: acne.
 //   refractionExitErrors  the ray refracted into the hit object (index 1.5)
-//                         must leave it where the oracle says (relative 1e-3);
-//                         re-hitting the entry point or missing the exit
-//                         fails.
+//                         must leave it where the oracle says, to 1e-3 of the
+//                         eye's distance (a pixel's footprint is ~1.6e-3 of
+//                         it); re-hitting the entry surface (t below half the
+//                         exit's) or missing the exit fails.
 //
 // Replayed as the mode would: hit point p = eye + t d in float in the mode's
 // world (rebased on the eye for robust), the object's float M^-1 (float
