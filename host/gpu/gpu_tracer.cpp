@@ -83,6 +83,12 @@ public:
         }
         if (features.kinds[KIND_BOOLEAN])
             add(BINDING_CSG_NODES, makeBuffer(c, packed.csgNodes, Usage::eStorageBuffer));
+        // Exactly the variant's bindings (bindingsFor): no buffer uploaded for nothing.
+        const std::vector<ShaderBinding> bindings = bindingsFor(features);
+        if (bindings.size() != buffers_.size() ||
+            !std::all_of(bindings.begin(), bindings.end(),
+                         [&](const ShaderBinding& b) { return buffers_.count(b.binding) > 0; }))
+            throw Error("internal: the buffers uploaded differ from the variant's bindings");
 
         const std::array<vk::DescriptorPoolSize, 2> poolSizes{{
             {vk::DescriptorType::eUniformBuffer, 1},
@@ -184,15 +190,9 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     const auto bind = [&](uint binding, vk::DescriptorType type) {
         bindings.emplace_back(binding, type, 1, vk::ShaderStageFlagBits::eCompute);
     };
-    const auto storage = vk::DescriptorType::eStorageBuffer;
-    bind(BINDING_FRAME, vk::DescriptorType::eUniformBuffer);
-    for (uint binding : {BINDING_OBJECTS, BINDING_LIGHTS, BINDING_PIXELS}) bind(binding, storage);
-    if (features.debugPixel) bind(BINDING_DEBUG, storage);
-    if (features.objectBvh)
-        for (uint binding : {BINDING_OBJECT_NODES, BINDING_OBJECT_INDEX}) bind(binding, storage);
-    if (features.kinds[KIND_MESH])
-        for (uint binding : {BINDING_MESHES, BINDING_MESH_NODES, BINDING_TRIANGLES}) bind(binding, storage);
-    if (features.kinds[KIND_BOOLEAN]) bind(BINDING_CSG_NODES, storage);
+    for (const ShaderBinding& b : bindingsFor(features))
+        bind(b.binding, b.uniform ? vk::DescriptorType::eUniformBuffer
+                                  : vk::DescriptorType::eStorageBuffer);
     p->setLayout = vk::raii::DescriptorSetLayout(c.device, {{}, bindings});
     const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0, sizeof(TileParams));
     p->layout = vk::raii::PipelineLayout(c.device, {{}, *p->setLayout, pushRange});
