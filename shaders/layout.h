@@ -62,7 +62,7 @@ VKRAY_CONST(uint, MEDIUM_STACK_SIZE, 4u);    // nested transparent objects a ray
 VKRAY_CONST(uint, FOLLOW_REFLECTION, 1u);
 VKRAY_CONST(uint, FOLLOW_REFRACTION, 2u);
 
-// Texture codes (`texture n`; SHADING_SPEC.md / README "Textures").
+// Texture codes (`texture n`; README "Shading").
 VKRAY_CONST(uint, TEXTURE_NONE, 0u);
 VKRAY_CONST(uint, TEXTURE_CHECKERBOARD, 1u);  // parameters: size, r g b
 VKRAY_CONST(uint, TEXTURE_WOOD, 2u);          // parameters: ring width, r g b
