@@ -274,8 +274,8 @@ int runWatch(const Options& o, std::ostream& out, std::ostream& err) {
 }
 
 int runRender(const Options& o, std::ostream& out, std::ostream& err) {
-    // Ctrl-C and SIGTERM set a flag: the render stops between tiles (rows on
-    // the CPU) and writes nothing (Interrupted), or --watch stops waiting.
+    // Ctrl-C, SIGTERM and SIGHUP set a flag: the render stops between tiles
+    // (rows on the CPU) and writes nothing (Interrupted), or --watch stops waiting.
     const StopOnSignal stopOnSignal;
     if (o.watch) return runWatch(o, out, err);
     GpuSession session;

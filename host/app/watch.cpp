@@ -19,7 +19,7 @@ volatile std::sig_atomic_t stopFlag = 0;
 void onStopSignal(int) { stopFlag = 1; }
 
 using SignalHandler = void (*)(int);
-SignalHandler previousInt = SIG_DFL, previousTerm = SIG_DFL;
+SignalHandler previousInt = SIG_DFL, previousTerm = SIG_DFL, previousHup = SIG_DFL;
 
 }  // namespace
 
@@ -27,11 +27,13 @@ StopOnSignal::StopOnSignal() {
     stopFlag = 0;
     previousInt = std::signal(SIGINT, onStopSignal);
     previousTerm = std::signal(SIGTERM, onStopSignal);
+    previousHup = std::signal(SIGHUP, onStopSignal);  // the terminal closed
 }
 
 StopOnSignal::~StopOnSignal() {
     std::signal(SIGINT, previousInt);
     std::signal(SIGTERM, previousTerm);
+    std::signal(SIGHUP, previousHup);
 }
 
 bool stopRequested() { return stopFlag != 0; }

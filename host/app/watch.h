@@ -8,8 +8,9 @@
 
 namespace vkray {
 
-// While one exists, SIGINT and SIGTERM only set a flag (stopRequested()), so
-// the current render finishes and writes whole files before vkray exits.
+// While one exists, SIGINT, SIGTERM and SIGHUP only set a flag
+// (stopRequested()): a render stops between tiles or rows and writes
+// nothing, --watch stops waiting; either way no partial file is left.
 class StopOnSignal {
 public:
     StopOnSignal();

@@ -282,6 +282,11 @@ TEST_F(Reliability, SigtermStopsACpuRenderBetweenRows) {
     expectCleanInterruption(dir, "--cpu", SIGTERM, "cpu reference");
 }
 
+TEST_F(Reliability, SighupStopsARenderToo) {
+    // The terminal that started the render was closed.
+    expectCleanInterruption(dir, "--block 2", SIGHUP, "gpu render");
+}
+
 TEST_F(Reliability, ProgressLinesWhenStderrIsNotATerminal) {
     const fs::path scene = dir / "teapots.sdl";
     std::ofstream(scene) << teapots();
