@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 #include "scene/error.h"
 
@@ -136,8 +137,11 @@ std::uint32_t bigEndian32(const std::string& bytes, size_t at) {
 //   data, so they are dropped.
 // Bytes that do not start like a PNG come back as they are (stb says what is
 // wrong); chunks after IEND are not looked at (decoders ignore them).
-std::string checkedPngChunks(const std::string& path, const std::string& bytes) {
+// `idatBytes` gets the IDAT chunks' data length in all.
+std::string checkedPngChunks(const std::string& path, const std::string& bytes,
+                             std::uint64_t& idatBytes) {
     constexpr size_t kSignature = 8, kLengthAndType = 8, kCrc = 4;
+    idatBytes = 0;
     if (bytes.compare(0, kSignature, "\x89PNG\r\n\x1a\n") != 0) return bytes;
     std::vector<size_t> emptyIdat;
     for (size_t at = kSignature; at + kLengthAndType <= bytes.size();) {
@@ -154,6 +158,7 @@ std::string checkedPngChunks(const std::string& path, const std::string& bytes) 
         }
         if (type == "IEND") break;
         if (length == 0 && type == "IDAT") emptyIdat.push_back(at);
+        if (type == "IDAT") idatBytes += length;
         at += kLengthAndType + length + kCrc;
     }
     if (emptyIdat.empty()) return bytes;
@@ -169,8 +174,9 @@ std::string checkedPngChunks(const std::string& path, const std::string& bytes) 
 }
 
 // PNG or BMP bytes (already checked to start like one) through stb, as 3
-// channels in [0, 1].
-Image decodeWithStb(const std::string& path, const std::string& bytes, const char* what) {
+// channels in [0, 1]. `pngIdatBytes`: a PNG's compressed data length.
+Image decodeWithStb(const std::string& path, const std::string& bytes, const char* what,
+                    std::optional<std::uint64_t> pngIdatBytes = std::nullopt) {
     if (bytes.size() > size_t(INT32_MAX))
         throw Error(path + ": " + what + " file is too large");
     // stb allocates the whole image before it finds out that the data is
@@ -182,6 +188,20 @@ Image decodeWithStb(const std::string& path, const std::string& bytes, const cha
          std::abs((long long)claimedWidth * claimedHeight) > kMaxImagePixels))
         // (stb's BMP info gives a top-down file's height as it is stored: negative)
         throw Error(tooManyPixels(path, std::abs(claimedWidth), std::abs(claimedHeight)));
+    // Found by fuzz/image_fuzz.cpp: an 80-byte PNG claiming 8451x7426 pixels
+    // made stb allocate 188 MB before finding the data missing (a timeout under
+    // ASan). Every pixel takes at least one bit, and deflate packs at most 1032
+    // bytes into one: data that cannot hold the image is refused first.
+    if (pngIdatBytes && claimedWidth > 0 && claimedHeight > 0) {
+        const std::uint64_t leastRaw = (std::uint64_t(claimedWidth) * std::uint64_t(claimedHeight) + 7) / 8;
+        constexpr std::uint64_t kDeflateMaxRatio = 1032;
+        if (*pngIdatBytes * kDeflateMaxRatio < leastRaw)
+            throw Error(path + ": not a readable PNG file (its " + std::to_string(claimedWidth) +
+                        "x" + std::to_string(claimedHeight) + " pixels need at least " +
+                        std::to_string((leastRaw + kDeflateMaxRatio - 1) / kDeflateMaxRatio) +
+                        " bytes of compressed data; its IDAT chunks hold " +
+                        std::to_string(*pngIdatBytes) + ")");
+    }
     Image image;
     int fileChannels = 0;
     stbi_uc* data =
@@ -209,7 +229,9 @@ Image decodeWithStb(const std::string& path, const std::string& bytes, const cha
 Image decodePng(const std::string& path, const std::string& fileBytes) {
     if (fileBytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0)
         throw Error(path + ": not a readable PNG file (no PNG signature)");
-    return decodeWithStb(path, checkedPngChunks(path, fileBytes), "PNG");
+    std::uint64_t idatBytes = 0;
+    const std::string bytes = checkedPngChunks(path, fileBytes, idatBytes);
+    return decodeWithStb(path, bytes, "PNG", idatBytes);
 }
 
 std::uint32_t littleEndianAt(const std::string& bytes, size_t at, int count) {

@@ -267,6 +267,7 @@ void expectCleanInterruption(const fs::path& dir, const std::string& extra, int 
     BackgroundVkray render("render " + scene.string() + " -o " + (dir / "out.png").string() +
                                " --aov " + (dir / "out").string() + " --size 3000x3000 " + extra,
                            dir / "log.txt");
+    ASSERT_TRUE(render.started());
     // The first progress line comes a second into the render.
     ASSERT_TRUE(render.waitFor(progressLabel + ": ")) << render.output();
     EXPECT_EQ(render.stop(signal), 130) << render.output();

@@ -160,6 +160,34 @@ TEST(DecodeImageFuzzRegression, ChunkLongerThanTheFileIsRefusedBeforeAllocating)
               "claims 256 bytes of data; 4 bytes are left)");
 }
 
+// Found by fuzz/image_fuzz.cpp: this 80-byte PNG claims 8451x7426 pixels
+// (within the limits) and holds 23 bytes of compressed data; stb allocated
+// 188 MB for it before finding the data short (a timeout under ASan). Data
+// that cannot hold the image (deflate packs at most 1032:1, a pixel takes at
+// least a bit) is refused first.
+TEST(DecodeImageFuzzRegression, CompressedDataTooShortForTheImageIsRefusedBeforeAllocating) {
+    const unsigned char found[] = {
+        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44,
+        0x52, 0x00, 0x00, 0x21, 0x03, 0x00, 0x00, 0x1d, 0x02, 0x08, 0x02, 0x00, 0x00, 0x00, 0x12,
+        0x16, 0xf1, 0x4d, 0x00, 0x00, 0x00, 0x17, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0xf8,
+        0xdf, 0xc0, 0xc0, 0x00, 0xc1, 0xa4, 0x22, 0x72, 0x89, 0x50, 0x4e, 0x47, 0x0d, 0x02, 0x00,
+        0x00, 0x59, 0x04, 0xc0, 0xe4, 0x24, 0x98, 0xcb, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e,
+        0x44, 0xae, 0x42, 0x60, 0x82};
+    EXPECT_EQ(errorOf([&] {
+                  decodeImage(std::string(reinterpret_cast<const char*>(found), sizeof found),
+                              "found.png");
+              }),
+              "found.png: not a readable PNG file (its 8451x7426 pixels need at least 7602 bytes "
+              "of compressed data; its IDAT chunks hold 23)");
+    // At the bound itself the data is handed to stb: a 1032:1 stream of
+    // 8 * 1032 one-bit pixels is possible in principle.
+    const std::string header = pngHeaderOnly(8 * 1032, 1);
+    EXPECT_EQ(errorOf([&] {
+                  decodeImage(header + pngChunk("IDAT", "x") + pngChunk("IEND", ""), "edge.png");
+              }).find("need at least"),
+              std::string::npos);
+}
+
 TEST(DecodeImage, PfmClaimingTooManyPixelsIsRefused) {
     EXPECT_EQ(errorOf([] { decodeImage("PF\n10000 10000\n-1\n", "big.pfm"); }),
               "big.pfm: the image is 10000x10000, above vkray's limit of 67108864 pixels "

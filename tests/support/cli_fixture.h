@@ -78,6 +78,7 @@ public:
     ~BackgroundVkray() {
         if (pid_ > 0) stop(SIGKILL);
     }
+    bool started() const { return pid_ > 0; }
     BackgroundVkray(const BackgroundVkray&) = delete;
     BackgroundVkray& operator=(const BackgroundVkray&) = delete;
 
@@ -103,7 +104,7 @@ public:
     // Sends `signal` (SIGINT is what Ctrl-C sends) and returns the exit
     // status, or -1 when the child did not exit on its own (a signal killed it).
     int stop(int signal = SIGINT) {
-        if (!exited_) {
+        if (!exited_ && pid_ > 0) {  // never kill(-1) or kill(0): only our child
             ::kill(pid_, signal);
             ::waitpid(pid_, &status_, 0);
             exited_ = true;
@@ -113,6 +114,7 @@ public:
     }
     // True once the child has exited (on its own or by a signal).
     bool exited() {
+        if (pid_ <= 0) return true;  // fork failed
         if (!exited_ && ::waitpid(pid_, &status_, WNOHANG) == pid_) exited_ = true;
         return exited_;
     }
