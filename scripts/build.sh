@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Configures (Release, Ninja) and builds into build/; incremental after the first run.
+# Configures (Release, Ninja, MPI required: install-deps.sh installs it) and
+# builds into build/; incremental after the first run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-[ -f build/build.ninja ] || cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+[ -f build/build.ninja ] || cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DVKRAY_MPI=ON
 cmake --build build

@@ -10,6 +10,7 @@ packages=(
   libglm-dev libstb-dev
   libgtest-dev libbenchmark-dev
   clang libclang-rt-dev  # scripts/fuzz.sh: clang and its libFuzzer/sanitizer runtimes
+  libopenmpi-dev openmpi-bin  # rendering across MPI ranks (README "Across machines")
 )
 
 missing=()

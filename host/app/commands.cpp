@@ -3,6 +3,8 @@
 #include "app/pixel_report.h"
 #include "app/progress.h"
 #include "app/watch.h"
+#include "dist/distributed_render.h"
+#include "dist/mpi_world.h"
 #include "gpu/context.h"
 #include "gpu/gpu_tracer.h"
 #include "gpu/shader_variant.h"
@@ -20,6 +22,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <thread>
 #include <unistd.h>
 
@@ -101,7 +104,9 @@ struct GpuSession {
 
     gpu::GpuTracer& tracerFor(const Options& o, std::ostream& out) {
         if (!tracer) {
-            context = std::make_unique<gpu::Context>(gpu::ContextOptions{o.device, o.validation});
+            // Ranks of an MPI job on one node spread over its equally good devices.
+            context = std::make_unique<gpu::Context>(gpu::ContextOptions{
+                o.device, o.validation, dist::World::current().localRank()});
             const gpu::DeviceInfo& device = context->device();
             out << "device: " << device.name << " (" << device.type << ", " << device.driverName
                 << " " << device.driverInfo << ")\n";
@@ -142,11 +147,32 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
     gpu::GpuTracer& tracer = session.tracerFor(o, out);
     gpu::GpuRenderStats stats;
     ProgressDisplay display(err, ProgressDisplay::styleForStderr(o.quiet), "gpu render");
-    Frame frame = tracer.render(scene, camera, settings, &stats, progressTo(display));
+    const dist::World& world = dist::World::current();
+    if (!world.distributed()) {
+        Frame frame = tracer.render(scene, camera, settings, &stats, progressTo(display));
+        display.finish();
+        reportShader(stats, o, out);
+        out << "gpu render: " << fixed(stats.renderSeconds, 3) << " s, " << stats.tiles
+            << " tiles, " << fixed(mrays(stats.rays, stats.renderSeconds), 2) << " Mrays/s\n";
+        session.requireNoValidationMessages(o);
+        return frame;
+    }
+    const auto start = Clock::now();
+    dist::DistributedStats shares;
+    Frame frame = dist::renderAcrossRanks(world, tracer, scene, camera, settings, &stats,
+                                          progressTo(display), &shares);
+    const double seconds = secondsSince(start) - stats.shader.seconds - stats.setupSeconds;
     display.finish();
     reportShader(stats, o, out);
-    out << "gpu render: " << fixed(stats.renderSeconds, 3) << " s, " << stats.tiles << " tiles, "
-        << fixed(mrays(stats.rays, stats.renderSeconds), 2) << " Mrays/s\n";
+    std::size_t tiles = 0;
+    std::string perRank;
+    for (const std::size_t count : shares.tilesPerRank) {
+        perRank += (perRank.empty() ? "" : ", ") + std::to_string(count);
+        tiles += count;
+    }
+    out << "gpu render: " << fixed(seconds, 3) << " s, " << tiles << " tiles on " << world.size()
+        << " MPI ranks (tiles per rank: " << perRank << "), "
+        << fixed(mrays(primaryRays(settings), seconds), 2) << " Mrays/s\n";
     session.requireNoValidationMessages(o);
     return frame;
 }
@@ -211,6 +237,7 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
 
     Frame frame = o.cpu ? renderCpu(scene, camera, settings, o, out, err)
                         : renderGpu(scene, camera, settings, o, session, out, err);
+    if (dist::World::current().rank() != 0) return 0;  // rank 0 has the frame
     bool passed = true;
     // Every output is written in full beside its destination, then all are
     // renamed into place together: a failed or interrupted run changes none.
@@ -281,8 +308,19 @@ int runRender(const Options& o, std::ostream& out, std::ostream& err) {
     // Ctrl-C and SIGTERM set a flag: the render stops between tiles (rows on
     // the CPU) and writes nothing (Interrupted), or --watch stops waiting.
     const StopOnSignal stopOnSignal;
-    if (o.watch) return runWatch(o, out, err);
     GpuSession session;
+    if (dist::World::current().distributed()) {
+        if (o.watch) throw Error("--watch does not run across MPI ranks; run it without mpirun");
+        if (o.cpu)
+            throw Error("--cpu renders in one process (its threads share the cores); run it "
+                        "without mpirun");
+        if (dist::World::current().rank() != 0) {
+            // Only rank 0 speaks; the others' errors still reach stderr.
+            std::ostream quiet(nullptr);
+            return renderOnce(o, session, quiet, quiet);
+        }
+    }
+    if (o.watch) return runWatch(o, out, err);
     return renderOnce(o, session, out, err);
 }
 
@@ -379,9 +417,13 @@ int runDevices(std::ostream& out) {
 }  // namespace
 
 int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
+    if (dist::World::current().distributed() && o.command != Command::Render)
+        throw Error("only `vkray render` runs across MPI ranks; run this command without mpirun");
     switch (o.command) {
     case Command::Help: out << usageText(); return 0;
-    case Command::Version: out << "vkray 0.1.0\n"; return 0;
+    case Command::Version:
+        out << "vkray 0.1.0\nMPI: " << dist::World::support() << "\n";
+        return 0;
     case Command::Render: return runRender(o, out, err);
     case Command::Pixel: return runPixel(o, out, err);
     case Command::ShadersCheck: return runShadersCheck(o, out, err);
@@ -392,23 +434,38 @@ int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
 }
 
 int vkrayMain(int argc, char** argv) {
+    int status = 1;
+    std::string message;
     try {
+        dist::World& world = dist::World::join(argc, argv);
         const Options options = parseOptions(std::vector<std::string>(argv + 1, argv + argc));
-        return runCommand(options, std::cout, std::cerr);
+        status = runCommand(options, std::cout, std::cerr);
+        world.finish();
+        return status;
     } catch (const Interrupted&) {
-        std::cerr << "vkray: interrupted; nothing was written (existing files are as they were)\n";
-        return 130;
+        message = "vkray: interrupted; nothing was written (existing files are as they were)\n";
+        status = 130;
     } catch (const Error& e) {
-        printError(e, std::cerr);
+        std::ostringstream text;
+        printError(e, text);
+        message = text.str();
     } catch (const std::bad_alloc&) {
-        std::cerr << "vkray: error: out of memory; render a smaller image or scene\n";
+        message = "vkray: error: out of memory; render a smaller image or scene\n";
     } catch (const std::exception& e) {
         // Vulkan errors (device lost, out of device memory) arrive here.
-        std::cerr << "vkray: error: " << e.what()
-                  << "\n  (a Vulkan or system failure; `vkray devices` shows the devices, "
-                     "--cpu renders without Vulkan)\n";
+        message = std::string("vkray: error: ") + e.what() +
+                  "\n  (a Vulkan or system failure; `vkray devices` shows the devices, "
+                  "--cpu renders without Vulkan)\n";
     }
-    return 1;
+    // In an MPI job, a failing rank says which it is and ends every rank: the
+    // others would otherwise wait for it for ever.
+    const dist::World& world = dist::World::current();
+    if (world.distributed()) {
+        std::cerr << "[" << world.describeRank() << "] " << message;
+        world.abort(status);
+    }
+    std::cerr << message;
+    return status;
 }
 
 }  // namespace vkray

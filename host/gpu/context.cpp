@@ -108,17 +108,21 @@ std::vector<vk::raii::PhysicalDevice> enumerate(vk::raii::Instance& instance) {
     }
 }
 
-// Index of the best device with a compute queue, or -1.
+// Index of the best device with a compute queue, or -1. Where several are
+// equally good (a node with several GPUs), process `share` of a job takes
+// the (share mod n)-th of them, so that MPI ranks on one node spread out.
 int preferredDevice(const std::vector<DeviceInfo>& devices,
-                    const std::vector<vk::raii::PhysicalDevice>& physical) {
-    int best = -1;
+                    const std::vector<vk::raii::PhysicalDevice>& physical, int share = 0) {
+    std::vector<int> best;
     for (size_t i = 0; i < devices.size(); ++i) {
         if (!devices[i].hasCompute || devices[i].apiVersion < VK_API_VERSION_1_2) continue;
-        auto rank = typeRank(physical[i].getProperties().deviceType);
-        if (best < 0 || rank < typeRank(physical[size_t(best)].getProperties().deviceType))
-            best = int(i);
+        const auto rank = typeRank(physical[i].getProperties().deviceType);
+        const auto bestRank =
+            best.empty() ? rank : typeRank(physical[size_t(best[0])].getProperties().deviceType);
+        if (rank < bestRank) best.clear();
+        if (rank <= bestRank) best.push_back(int(i));
     }
-    return best;
+    return best.empty() ? -1 : best[size_t(std::max(share, 0)) % best.size()];
 }
 
 std::string loaderFailure(const std::exception& e) {
@@ -234,7 +238,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
 
     int chosen = options.deviceIndex;
     if (chosen < 0) {
-        chosen = preferredDevice(devices, physical);
+        chosen = preferredDevice(devices, physical, options.shareIndex);
         if (chosen < 0)
             throw Error(std::string("no Vulkan device with a compute queue and Vulkan 1.2; ") +
                         kDeviceAdvice);

@@ -33,6 +33,7 @@ struct DeviceInfo {
 struct ContextOptions {
     int deviceIndex = -1;    // -1: prefer a discrete GPU, then integrated, ..., then lavapipe
     bool validation = false; // enable VK_LAYER_KHRONOS_validation
+    int shareIndex = 0;      // automatic choice: this process's index among those on its node
 };
 
 class Context {

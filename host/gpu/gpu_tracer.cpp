@@ -246,7 +246,7 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
 
 Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
                         const RenderSettings& settings, GpuRenderStats* stats,
-                        const RenderProgress& progress) try {
+                        const RenderProgress& progress, TileSchedule* schedule) try {
     if (settings.width < 1 || settings.height < 1 || settings.block < 1)
         throw Error("render: width, height and block must be at least 1");
     GpuRenderStats local;
@@ -273,12 +273,17 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
     st.tiles = 0;
     st.rays = 0;
     const size_t totalRays = size_t((settings.width + block - 1) / block) *
-                             size_t((settings.height + block - 1) / block);
+                             size_t((settings.height + block - 1) / block) * size_t(settings.spp);
     if (progress && !progress(0, totalRays)) throw Interrupted();
-    for (int ty = 0; ty < settings.height; ty += tile) {
-        for (int tx = 0; tx < settings.width; tx += tile) {
-            const int w = std::min(tile, settings.width - tx);
-            const int h = std::min(tile, settings.height - ty);
+    AllTilesInRows everyTile;
+    TileSchedule& tiles = schedule ? *schedule : everyTile;
+    tiles.plan(settings.width, settings.height, tile);
+    while (const std::optional<TileRect> given = tiles.next()) {
+        // A tile handed out by another process may be larger than this
+        // device's: it is traced in pieces of this device's tile side.
+        for (const TileRect& piece : tilesOf(given->width, given->height, tile)) {
+            const int tx = given->x + piece.x, ty = given->y + piece.y;
+            const int w = piece.width, h = piece.height;
             pass.dispatchTile(tx, ty, w, h, block);
             const GpuPixel* pixels = pass.pixels();
             for (int y = 0; y < h; ++y) {
@@ -296,6 +301,7 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
             ++st.tiles;
             if (progress && !progress(st.rays, totalRays)) throw Interrupted();
         }
+        tiles.finished(*given, frame);
     }
     st.renderSeconds = secondsSince(renderStart);
     return frame;

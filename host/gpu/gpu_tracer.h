@@ -11,6 +11,7 @@
 #include "scene/camera.h"
 #include "scene/render_progress.h"
 #include "scene/scene.h"
+#include "scene/tile_schedule.h"
 
 #include <cstddef>
 #include <memory>
@@ -48,8 +49,11 @@ public:
     // Error naming the count, the limit and what to do), then traces it tile
     // by tile; `progress` hears after each tile and can stop the render
     // (Interrupted). A device lost or out of memory is an Error saying so.
+    // `schedule` chooses the tiles (default: all of them, in rows); the
+    // frame's other pixels are left as Frame() made them.
     Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
-                 GpuRenderStats* stats = nullptr, const RenderProgress& progress = nullptr);
+                 GpuRenderStats* stats = nullptr, const RenderProgress& progress = nullptr,
+                 TileSchedule* schedule = nullptr);
 
     // `vkray pixel`: traces pixel (x, y) alone with the debug-pixel variant,
     // which records every object test and shading term.

@@ -219,8 +219,11 @@ TEST(Corpus, CastleLoadsWithItsExtrudedArches) {
     const Scene scene = loadScene(kCorpus + "castle.dat", {}, nullptr);
     EXPECT_EQ(scene.objects.size(), 220u);
     ASSERT_EQ(scene.meshes.size(), 1u);  // both `extrude hlArch.dat` share one mesh
-    for (const SceneObject& o : scene.objects)
-        if (o.type == ShapeType::Extrude) EXPECT_EQ(o.mesh, 0);
+    for (const SceneObject& o : scene.objects) {
+        if (o.type == ShapeType::Extrude) {
+            EXPECT_EQ(o.mesh, 0);
+        }
+    }
 }
 
 // ---- scenes/*.sdl: the project's own scenes, in vkray's dialect ----------------

@@ -35,10 +35,9 @@ struct RunResult {
     std::string output;  // stdout and stderr together
 };
 
-// Runs the binary with `args`; `environment` ("NAME=value ...") is set for it alone.
-inline RunResult vkray(const std::string& args, const std::string& environment = "") {
-    const std::string command =
-        "env " + environment + " " + std::string(VKRAY_BINARY) + " " + args + " 2>&1";
+// Runs a shell command line, stderr with stdout.
+inline RunResult runShell(const std::string& commandLine) {
+    const std::string command = commandLine + " 2>&1";
     RunResult run{-1, ""};
     FILE* pipe = ::popen(command.c_str(), "r");
     if (!pipe) return run;
@@ -48,6 +47,11 @@ inline RunResult vkray(const std::string& args, const std::string& environment =
     const int status = ::pclose(pipe);
     run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return run;
+}
+
+// Runs the binary with `args`; `environment` ("NAME=value ...") is set for it alone.
+inline RunResult vkray(const std::string& args, const std::string& environment = "") {
+    return runShell("env " + environment + " " + std::string(VKRAY_BINARY) + " " + args);
 }
 
 // The binary in a child process (--watch, a render to interrupt): stdout and

@@ -1,0 +1,61 @@
+// Which tiles of a frame a renderer traces, and who hears when each is done.
+// One process traces every tile, row by row; `vkray render` under mpirun
+// hands tiles out across the ranks instead (host/dist/distributed_render.*).
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace vkray {
+
+struct Frame;
+
+// A rectangle of pixels; x and y are multiples of the render's block.
+struct TileRect {
+    int x = 0, y = 0, width = 0, height = 0;
+};
+
+// The tiles of a width x height image, `side` pixels square (the last row and
+// column smaller), top to bottom, left to right.
+inline std::vector<TileRect> tilesOf(int width, int height, int side) {
+    std::vector<TileRect> tiles;
+    for (int y = 0; y < height; y += side)
+        for (int x = 0; x < width; x += side)
+            tiles.push_back({x, y, side < width - x ? side : width - x,
+                             side < height - y ? side : height - y});
+    return tiles;
+}
+
+class TileSchedule {
+public:
+    virtual ~TileSchedule() = default;
+    // Before the first tile: the image and the tile side this renderer would
+    // pick (a multiple of the block that fits the device's limits). A tile
+    // that next() returns may be larger; the renderer splits it.
+    virtual void plan(int width, int height, int tileSide) = 0;
+    // The next tile to trace, or none when the frame is done.
+    virtual std::optional<TileRect> next() = 0;
+    // `tile` of `frame` is traced.
+    virtual void finished(const TileRect& tile, const Frame& frame) = 0;
+};
+
+// Every tile, in tilesOf's order: the one-process schedule.
+class AllTilesInRows final : public TileSchedule {
+public:
+    void plan(int width, int height, int tileSide) override {
+        tiles_ = tilesOf(width, height, tileSide);
+        nextIndex_ = 0;
+    }
+    std::optional<TileRect> next() override {
+        if (nextIndex_ == tiles_.size()) return std::nullopt;
+        return tiles_[nextIndex_++];
+    }
+    void finished(const TileRect&, const Frame&) override {}
+
+private:
+    std::vector<TileRect> tiles_;
+    std::size_t nextIndex_ = 0;
+};
+
+}  // namespace vkray
