@@ -161,6 +161,7 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
     dist::DistributedStats shares;
     Frame frame = dist::renderAcrossRanks(world, tracer, scene, camera, settings, &stats,
                                           progressTo(display), &shares);
+    if (world.rank() != 0) return frame;  // its tiles are with rank 0, which reports
     const double seconds = secondsSince(start) - stats.shader.seconds - stats.setupSeconds;
     display.finish();
     reportShader(stats, o, out);
@@ -170,9 +171,11 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
         perRank += (perRank.empty() ? "" : ", ") + std::to_string(count);
         tiles += count;
     }
+    const std::size_t workerTiles = tiles - shares.tilesPerRank[0];
     out << "gpu render: " << fixed(seconds, 3) << " s, " << tiles << " tiles on " << world.size()
-        << " MPI ranks (tiles per rank: " << perRank << "), "
-        << fixed(mrays(primaryRays(settings), seconds), 2) << " Mrays/s\n";
+        << " MPI ranks (tiles per rank: " << perRank << "; hand-out "
+        << fixed(workerTiles ? 1e3 * shares.handOutSeconds / double(workerTiles) : 0.0, 3)
+        << " ms a tile), " << fixed(mrays(primaryRays(settings), seconds), 2) << " Mrays/s\n";
     session.requireNoValidationMessages(o);
     return frame;
 }
