@@ -51,21 +51,6 @@ double taperOf(const SceneObject& object) {
     }
 }
 
-bool isMeshShape(ShapeType type) {
-    switch (type) {
-    case ShapeType::Teapot:
-    case ShapeType::Tetrahedron:
-    case ShapeType::Octahedron:
-    case ShapeType::Dodecahedron:
-    case ShapeType::Icosahedron:
-    case ShapeType::Buckyball:
-    case ShapeType::Diamond:
-    case ShapeType::Mesh:
-    case ShapeType::Extrude: return true;
-    default: return false;
-    }
-}
-
 const TriangleMesh& meshOf(const Scene& scene, const SceneObject& object) {
     if (object.mesh < 0 || size_t(object.mesh) >= scene.meshes.size() ||
         !scene.meshes[size_t(object.mesh)])

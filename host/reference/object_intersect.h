@@ -53,7 +53,6 @@ double taperOf(const SceneObject& object);
 // The mesh a mesh-kind object (mesh, extrude, teapot, the polyhedra) draws.
 // Throws Error "file:line:col: error: 'mesh' has no geometry loaded (call
 // loadSceneGeometry)" when scene.meshes has none for it.
-bool isMeshShape(ShapeType type);
 const TriangleMesh& meshOf(const Scene& scene, const SceneObject& object);
 
 // The nearest hit with t > tMin of one object of the scene (any shape type,

@@ -22,10 +22,6 @@ namespace fs = std::filesystem;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-bool needsMesh(ShapeType type) {
-    return type == ShapeType::Mesh || type == ShapeType::Extrude || isBuiltInMesh(type);
-}
-
 // The file name as the scene wrote it (the reader resolved it against the
 // scene's folder), for messages.
 std::string writtenName(const SceneObject& object) {
@@ -108,7 +104,7 @@ bool assignMeshes(SceneObject& object, const SceneObject& topLevel, MeshLoader& 
     bool loaded = true;
     for (SceneObject& operand : object.operands)
         loaded = assignMeshes(operand, topLevel, loader, lenient, warnings) && loaded;
-    if (!needsMesh(object.type)) return loaded;
+    if (!isMeshShape(object.type)) return loaded;
     std::string failure;
     if (const std::optional<int> mesh = loader.meshFor(object, &failure)) {
         object.mesh = *mesh;
@@ -184,7 +180,7 @@ std::optional<Aabb> genericBounds(const SceneObject& object, const Scene& scene)
                         glm::dvec3(outer, outer, kTorusTubeRadius)};
         }
         default:
-            if (needsMesh(object.type) && object.mesh >= 0 &&
+            if (isMeshShape(object.type) && object.mesh >= 0 &&
                 std::size_t(object.mesh) < scene.meshes.size())
                 return scene.meshes[std::size_t(object.mesh)]->bounds;
             return std::nullopt;

@@ -56,6 +56,10 @@ TriangleMesh extrudeOutline(const Outline& outline);
 // polyhedra.cpp and teapot.cpp say how each is built).
 TriangleMesh builtInMesh(ShapeType type);
 bool isBuiltInMesh(ShapeType type);
+// Drawn as triangles: a built-in mesh, `mesh` or `extrude`.
+inline bool isMeshShape(ShapeType type) {
+    return type == ShapeType::Mesh || type == ShapeType::Extrude || isBuiltInMesh(type);
+}
 
 // ---- building blocks (used by builtInMesh; public for tests) -----------------
 

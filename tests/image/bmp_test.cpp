@@ -8,18 +8,10 @@
 
 #include "image/image_io.h"
 #include "scene/error.h"
+#include "support/error_of.h"
 
 namespace vkray {
 namespace {
-
-std::string errorOf(const std::function<void()>& action) {
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
 
 std::string littleEndian(std::uint32_t v, int bytes) {
     std::string out;

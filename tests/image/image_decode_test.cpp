@@ -13,20 +13,12 @@
 
 #include "image/image_io.h"
 #include "scene/error.h"
+#include "support/error_of.h"
 
 namespace vkray {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string errorOf(const std::function<void()>& action) {
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
 
 std::string bigEndian32(std::uint32_t v) {
     return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};

@@ -2,6 +2,7 @@
 // pixel's ray, hit and Hill shading can be worked out by hand.
 #include "reference/reference_tracer.h"
 
+#include "reference/reference_test_util.h"
 #include "scene/error.h"
 
 #include <glm/matrix.hpp>
@@ -16,30 +17,11 @@
 namespace vkray::reference {
 namespace {
 
+using test::makeObject;
+using test::scaling;
+using test::translation;
+
 constexpr float kInf = std::numeric_limits<float>::infinity();
-
-glm::dmat4 translation(const glm::dvec3& t) {
-    glm::dmat4 m(1.0);
-    m[3] = glm::dvec4(t, 1);
-    return m;
-}
-
-glm::dmat4 scaling(const glm::dvec3& s) {
-    glm::dmat4 m(1.0);
-    m[0][0] = s.x;
-    m[1][1] = s.y;
-    m[2][2] = s.z;
-    return m;
-}
-
-SceneObject object(ShapeType type, const glm::dmat4& worldFromObject = glm::dmat4(1.0),
-                   const glm::dmat4& objectFromWorld = glm::dmat4(1.0)) {
-    SceneObject o;
-    o.type = type;
-    o.worldFromObject = worldFromObject;
-    o.objectFromWorld = objectFromWorld;
-    return o;
-}
 
 CameraBasis camera(const glm::dvec3& eye, double fovDegrees, int width, int height) {
     Camera c;
@@ -56,7 +38,7 @@ Scene litSphere() {
     Scene scene;
     scene.background = {0, 0, 0.6};
     scene.globalAmbient = {0.1, 0.1, 0.1};
-    SceneObject sphere = object(ShapeType::Sphere);
+    SceneObject sphere = makeObject(ShapeType::Sphere);
     sphere.material.ambient = {0.1, 0.1, 0.1};
     sphere.material.diffuse = {0.8, 0.8, 0.8};
     sphere.material.specular = {1, 1, 1};
@@ -135,7 +117,7 @@ TEST(ReferenceTracer, RaysFollowTheImageAxesAndAspect) {
     // sy = 0.5, so the ray runs along (-0.75 * 2, 0.5, -1) and reaches z = 0
     // at (-7.5, 2.5, 0), 5 |(-1.5, 0.5, -1)| = 5 sqrt(3.5) from the eye.
     Scene scene;
-    scene.objects.push_back(object(ShapeType::Plane));
+    scene.objects.push_back(makeObject(ShapeType::Plane));
     const Frame frame = render(scene, camera({0, 0, 5}, 90, 4, 2), {4, 2, 1});
     const size_t topLeft = frame.index(0, 0);
     EXPECT_EQ(frame.id[topLeft], 0);
@@ -155,7 +137,7 @@ TEST(ReferenceTracer, HillShadingWithASideLightAndEmission) {
     // A second light straight below adds nothing: m.s = -1, and s + v = 0
     // leaves no halfway vector.
     Scene scene;
-    SceneObject plane = object(ShapeType::Plane);
+    SceneObject plane = makeObject(ShapeType::Plane);
     plane.material.emissive = {0.2, 0, 0};
     plane.material.specular = {1, 1, 1};
     plane.material.specularExponent = 2;
@@ -185,14 +167,14 @@ Scene mixedScene() {
     rotateY90[2] = {1, 0, 0, 0};
     rotateY90[3] = {0, 0, 0, 1};
     rotateYMinus90 = glm::transpose(rotateY90);  // a rotation's inverse, exactly
-    SceneObject wall = object(ShapeType::Plane, translation({-4, 0, 0}) * rotateY90,
+    SceneObject wall = makeObject(ShapeType::Plane, translation({-4, 0, 0}) * rotateY90,
                               rotateYMinus90 * translation({4, 0, 0}));
     wall.material.diffuse = {0.2, 0.7, 0.3};
     scene.objects.push_back(wall);
-    scene.objects.push_back(object(ShapeType::Cube,
+    scene.objects.push_back(makeObject(ShapeType::Cube,
                                    translation({2.5, 0, 0}) * scaling({0.5, 1, 0.75}),
                                    scaling({2, 1, 1 / 0.75}) * translation({-2.5, 0, 0})));
-    scene.objects.push_back(object(ShapeType::Square, translation({-2.5, 1, 0.5}),
+    scene.objects.push_back(makeObject(ShapeType::Square, translation({-2.5, 1, 0.5}),
                                    translation({2.5, -1, -0.5})));
     scene.lights.push_back({{-5, 5, 5}, {0.3, 0.3, 0.9}, {}});
     return scene;
@@ -230,7 +212,7 @@ TEST(ReferenceTracer, BlocksAreUniform) {
 
 TEST(ReferenceTracer, MissingMeshIsRefusedBeforeRendering) {
     Scene scene = litSphere();
-    SceneObject teapot = object(ShapeType::Teapot);
+    SceneObject teapot = makeObject(ShapeType::Teapot);
     teapot.loc = {std::make_shared<const std::string>("scene.sdl"), 3, 1};
     scene.objects.push_back(teapot);
     try {
@@ -244,10 +226,10 @@ TEST(ReferenceTracer, MissingMeshIsRefusedBeforeRendering) {
 
 TEST(ReferenceTracer, BooleanWithoutAnInsideIsRefusedBeforeRendering) {
     Scene scene = litSphere();
-    SceneObject square = object(ShapeType::Square);
+    SceneObject square = makeObject(ShapeType::Square);
     square.loc = {std::make_shared<const std::string>("scene.sdl"), 4, 9};
-    SceneObject difference = object(ShapeType::Difference);
-    difference.operands = {object(ShapeType::Sphere), square};
+    SceneObject difference = makeObject(ShapeType::Difference);
+    difference.operands = {makeObject(ShapeType::Sphere), square};
     scene.objects.push_back(difference);
     try {
         tracePixel(scene, camera({0, 0, 5}, 60, 3, 3), {3, 3, 1}, 1, 1);

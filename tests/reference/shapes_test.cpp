@@ -5,6 +5,7 @@
 
 #include "reference/object_intersect.h"
 #include "reference/scene_intersector.h"
+#include "reference/reference_test_util.h"
 #include "scene/error.h"
 
 #include <glm/geometric.hpp>
@@ -15,6 +16,10 @@
 
 namespace vkray::reference {
 namespace {
+
+using test::makeObject;
+using test::scaling;
+using test::translation;
 
 constexpr double kTol = 1e-12;
 
@@ -28,20 +33,6 @@ void expectNear(const glm::dvec3& actual, const glm::dvec3& expected, double tol
 
 // Affine matrices written out entry by entry (glm is column-major: m[column][row]),
 // so that the inverses below are exact and do not lean on glm::rotate's cos(90°).
-glm::dmat4 translation(const glm::dvec3& t) {
-    glm::dmat4 m(1.0);
-    m[3] = glm::dvec4(t, 1);
-    return m;
-}
-
-glm::dmat4 scaling(const glm::dvec3& s) {
-    glm::dmat4 m(1.0);
-    m[0][0] = s.x;
-    m[1][1] = s.y;
-    m[2][2] = s.z;
-    return m;
-}
-
 // 90 degrees about +z: (x, y, z) -> (-y, x, z).
 glm::dmat4 rotationZ90() {
     glm::dmat4 m(0.0);
@@ -60,15 +51,6 @@ glm::dmat4 rotationZMinus90() {
     m[2] = {0, 0, 1, 0};
     m[3] = {0, 0, 0, 1};
     return m;
-}
-
-SceneObject object(ShapeType type, const glm::dmat4& worldFromObject = glm::dmat4(1.0),
-                   const glm::dmat4& objectFromWorld = glm::dmat4(1.0)) {
-    SceneObject o;
-    o.type = type;
-    o.worldFromObject = worldFromObject;
-    o.objectFromWorld = objectFromWorld;
-    return o;
 }
 
 // ---- sphere ------------------------------------------------------------
@@ -296,7 +278,7 @@ TEST(Cube, TMinIsOpen) {
 // ---- world space ---------------------------------------------------------
 
 TEST(Object, IdentitySphereInWorld) {
-    const SceneObject sphere = object(ShapeType::Sphere);
+    const SceneObject sphere = makeObject(ShapeType::Sphere);
     const auto hit = intersectObject(kNoMeshes, sphere, 7, {{0, 0, 5}, {0, 0, -1}}, 0);
     ASSERT_TRUE(hit);
     EXPECT_EQ(hit->object, 7);
@@ -314,7 +296,7 @@ TEST(Object, TranslatedRotatedScaledSphere) {
     const glm::dmat4 M = translation({1, 2, 3}) * rotationZ90() * scaling({2, 1, 1});
     const glm::dmat4 inverse =
         scaling({0.5, 1, 1}) * rotationZMinus90() * translation({-1, -2, -3});
-    const SceneObject sphere = object(ShapeType::Sphere, M, inverse);
+    const SceneObject sphere = makeObject(ShapeType::Sphere, M, inverse);
 
     const glm::dvec3 point(0.52, 2.72, 3.8);
     const glm::dvec3 normal = glm::dvec3(-0.48, 0.18, 0.8) / std::sqrt(0.9028);
@@ -332,7 +314,7 @@ TEST(Object, NonUniformScaleUsesTheInverseTranspose) {
     // NUMERICS.md stress case 18: scale (1e3, 1, 1e-3). The generic point
     // (0, 1/√2, 1/√2) is the world point (0, 1/√2, 1e-3/√2) with normal
     // S^-1 (0, 1, 1)/√2 ∝ (0, 1, 1e3); M itself would give (0, 1, 1e-3).
-    const SceneObject ellipsoid = object(ShapeType::Sphere, scaling({1e3, 1, 1e-3}),
+    const SceneObject ellipsoid = makeObject(ShapeType::Sphere, scaling({1e3, 1, 1e-3}),
                                          scaling({1e-3, 1, 1e3}));
     const double r = 1 / std::sqrt(2.0);
     const auto hit = intersectObject(kNoMeshes, ellipsoid, 0, {{0, r, 10}, {0, 0, -1}}, 0);
@@ -343,7 +325,7 @@ TEST(Object, NonUniformScaleUsesTheInverseTranspose) {
 }
 
 TEST(Object, NormalFacesTheRay) {
-    const SceneObject plane = object(ShapeType::Plane);
+    const SceneObject plane = makeObject(ShapeType::Plane);
     const auto below = intersectObject(kNoMeshes, plane, 0, {{0, 0, -2}, {0, 0, 1}}, 0);
     ASSERT_TRUE(below);
     expectNear(below->normal, {0, 0, -1});
@@ -352,7 +334,7 @@ TEST(Object, NormalFacesTheRay) {
     expectNear(above->normal, {0, 0, 1});
     // Inside a cube the outward exit normal is turned back toward the eye.
     const auto inside =
-        intersectObject(kNoMeshes, object(ShapeType::Cube), 0, {{0.5, 0, 0}, {1, 0, 0}}, 0);
+        intersectObject(kNoMeshes, makeObject(ShapeType::Cube), 0, {{0.5, 0, 0}, {1, 0, 0}}, 0);
     ASSERT_TRUE(inside);
     expectNear(inside->normal, {-1, 0, 0});
 }
@@ -363,7 +345,7 @@ TEST(Object, RotatedSquareStandsUpright) {
     const glm::dmat4 M = translation({0, 0, -3}) * rotationZ90() * scaling({2, 1, 1});
     const glm::dmat4 inverse =
         scaling({0.5, 1, 1}) * rotationZMinus90() * translation({0, 0, 3});
-    const SceneObject square = object(ShapeType::Square, M, inverse);
+    const SceneObject square = makeObject(ShapeType::Square, M, inverse);
     const auto hit = intersectObject(kNoMeshes, square, 0, {{0.5, 1.9, 0}, {0, 0, -1}}, 0);
     ASSERT_TRUE(hit);
     EXPECT_NEAR(hit->t, 3, kTol);
@@ -373,7 +355,7 @@ TEST(Object, RotatedSquareStandsUpright) {
 }
 
 TEST(Object, MeshWithoutGeometryNamesItself) {
-    SceneObject mesh = object(ShapeType::Mesh);
+    SceneObject mesh = makeObject(ShapeType::Mesh);
     mesh.loc = {std::make_shared<const std::string>("scene.sdl"), 12, 5};
     try {
         intersectObject(kNoMeshes, mesh, 0, {{0, 0, 5}, {0, 0, -1}}, 0);
@@ -383,7 +365,7 @@ TEST(Object, MeshWithoutGeometryNamesItself) {
                   "scene.sdl:12:5: error: 'mesh' has no geometry loaded (call loadSceneGeometry)");
     }
     // A boolean needs its two operands (the reader always gives them).
-    EXPECT_THROW(intersectObject(kNoMeshes, object(ShapeType::Union), 0, {{0, 0, 5}, {0, 0, -1}},
+    EXPECT_THROW(intersectObject(kNoMeshes, makeObject(ShapeType::Union), 0, {{0, 0, 5}, {0, 0, -1}},
                                  0),
                  Error);
 }
@@ -394,8 +376,8 @@ TEST(ClosestHit, PicksTheNearerObject) {
     Scene scene;
     // The farther sphere first, so that scene order cannot be the answer.
     scene.objects.push_back(
-        object(ShapeType::Sphere, translation({0, 0, -3}), translation({0, 0, 3})));
-    scene.objects.push_back(object(ShapeType::Sphere));
+        makeObject(ShapeType::Sphere, translation({0, 0, -3}), translation({0, 0, 3})));
+    scene.objects.push_back(makeObject(ShapeType::Sphere));
     const auto hit = closestHit(scene, {{0, 0, 5}, {0, 0, -1}}, 0);
     ASSERT_TRUE(hit);
     EXPECT_EQ(hit->object, 1);
@@ -404,9 +386,9 @@ TEST(ClosestHit, PicksTheNearerObject) {
 
 TEST(ClosestHit, TiesGoToTheLowerIndex) {
     Scene scene;
-    scene.objects.push_back(object(ShapeType::Plane));
-    scene.objects.push_back(object(ShapeType::Square));  // the same z = 0 where they overlap
-    scene.objects.push_back(object(ShapeType::Sphere));
+    scene.objects.push_back(makeObject(ShapeType::Plane));
+    scene.objects.push_back(makeObject(ShapeType::Square));  // the same z = 0 where they overlap
+    scene.objects.push_back(makeObject(ShapeType::Sphere));
     auto hit = closestHit(scene, {{0, 0, 5}, {0, 0, -1}}, 0);
     ASSERT_TRUE(hit);
     EXPECT_EQ(hit->object, 2);  // the sphere's top at z = 1 is nearer
@@ -421,7 +403,7 @@ TEST(ClosestHit, TiesGoToTheLowerIndex) {
 TEST(ClosestHit, EmptySceneAndAllMisses) {
     Scene scene;
     EXPECT_FALSE(closestHit(scene, {{0, 0, 5}, {0, 0, -1}}, 0));
-    scene.objects.push_back(object(ShapeType::Sphere));
+    scene.objects.push_back(makeObject(ShapeType::Sphere));
     EXPECT_FALSE(closestHit(scene, {{0, 0, 5}, {0, 0, 1}}, 0));
 }
 

@@ -14,6 +14,7 @@
 #include "scene/scene_geometry.h"
 #include "scene/triangle_mesh.h"
 #include "scene/sdl_reader.h"
+#include "support/error_of.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -30,15 +31,6 @@ Scene load(const char* name, bool lenient, std::vector<std::string>* warnings = 
     SdlOptions options;
     options.lenient = lenient;
     return loadSdlFile(kCorpus + name, options, warnings);
-}
-
-std::string errorOf(const std::function<void()>& action) {
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
 }
 
 long countOf(const Scene& scene, ShapeType type) {

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "scene/error.h"
+#include "support/error_of.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -25,15 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string kCorpus = VKRAY_SOURCE_DIR "/../shared/sdl-corpus/";
-
-std::string errorOf(const std::function<void()>& action) {
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
 
 std::string meshError(const std::string& text) {
     return errorOf([&] { parse3vn(text, "m.3vn"); });

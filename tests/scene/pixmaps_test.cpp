@@ -15,6 +15,7 @@
 #include "scene/error.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
+#include "support/error_of.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -25,15 +26,6 @@ namespace {
 
 // Scene text as if it were scenes/t.sdl, so "data/texels.png" is the test image.
 const std::string kSceneFile = VKRAY_SOURCE_DIR "/scenes/t.sdl";
-
-std::string errorOf(const std::function<void()>& action) {
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
 
 Scene load(const std::string& text, bool lenient = false,
            std::vector<std::string>* warnings = nullptr) {

@@ -14,6 +14,7 @@
 
 #include "scene/error.h"
 #include "scene/triangle_mesh.h"
+#include "support/error_of.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -24,15 +25,6 @@ namespace {
 
 const std::string kCorpus = VKRAY_SOURCE_DIR "/../shared/sdl-corpus/";
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::string errorOf(const std::function<void()>& action) {
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
 
 Scene corpusScene(const char* name, bool lenient, std::vector<std::string>* warnings) {
     SdlOptions options;

@@ -14,18 +14,10 @@
 #include "scene/error.h"
 #include "scene/mesh_file.h"
 #include "scene/sdl_reader.h"
+#include "support/error_of.h"
 
 namespace vkray {
 namespace {
-
-std::string errorOf(const std::function<void()>& action) {
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
 
 std::string sceneError(const std::string& text) {
     return errorOf([&] { parseSdl(text, "n.sdl", {}); });

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "scene/error.h"
+#include "support/error_of.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -75,15 +76,6 @@ void expectWellFormed(const TriangleMesh& mesh) {
     EXPECT_EQ(mesh.bvh.nodes[0].bounds.lo, mesh.bounds.lo);
     EXPECT_EQ(mesh.bvh.nodes[0].bounds.hi, mesh.bounds.hi);
     EXPECT_LE(mesh.bvh.depth, kMaxBvhDepth);
-}
-
-std::string errorOf(const std::function<void()>& action) {
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
 }
 
 // ---- 3VN -----------------------------------------------------------------------
