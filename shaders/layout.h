@@ -60,18 +60,19 @@ VKRAY_CONST(uint, CSG_MAX_STACK, 4u);    // CSG lists alive at once while evalua
 VKRAY_CONST(uint, MAX_RECURSION_DEPTH, 8u);  // maxRecursionDepth (kMaxRecursionDepth on the host)
 VKRAY_CONST(uint, MEDIUM_STACK_SIZE, 4u);    // nested transparent objects a ray remembers
 
-// Ray Tracing Gems ch. 6 (Waechter and Binder): a secondary ray's origin
-// moves OFFSET_INT_SCALE float spacings of each coordinate along the normal,
-// or OFFSET_FLOAT_SCALE for coordinates within OFFSET_NEAR_ORIGIN of 0
-// (shaders/precision.glsl offsetOrigin; replayed by host/numerics/feelers.cpp).
-// RTG6 takes 256 spacings for world coordinates; vkray's robust modes work in
-// the eye's frame, where a hit point is t d from an exact origin and its
-// error a few spacings of itself: 32 keeps a margin over it (the stress
-// suite has no acne) without moving secondary rays visibly (README
-// "Numerics").
+// A secondary ray's origin moves off the surface along the normal by
+// OFFSET_SCALE times its largest coordinate, or by OFFSET_NEAR_ORIGIN_STEP
+// when every coordinate is within OFFSET_NEAR_ORIGIN of 0 (float modes;
+// shaders/precision.glsl offsetOrigin, replayed by host/numerics/feelers.cpp).
+// After Ray Tracing Gems ch. 6 (Waechter and Binder), whose 256 float
+// spacings of each coordinate are sized for world coordinates; vkray works in
+// the eye's frame, where a hit point and the re-intersection of a ray leaving
+// it are off by a few spacings of the largest coordinate in any direction:
+// 2^-18 of it (32 to 64 of its spacings) along the normal, whatever its
+// direction (README "Numerics").
+VKRAY_CONST(float, OFFSET_SCALE, 1.0 / 262144.0);
 VKRAY_CONST(float, OFFSET_NEAR_ORIGIN, 1.0 / 32.0);
-VKRAY_CONST(float, OFFSET_FLOAT_SCALE, 1.0 / 65536.0);
-VKRAY_CONST(float, OFFSET_INT_SCALE, 32.0);
+VKRAY_CONST(float, OFFSET_NEAR_ORIGIN_STEP, 1.0 / 65536.0);
 
 // GpuObject.shape.z: the secondary rays a hit on the surface spawns, decided
 // on the host in double (reflectivity > minReflectivity, transparency >
@@ -173,6 +174,7 @@ struct GpuDoubleCamera {
 
 struct GpuDoubleObject {
     dvec4 objectFromWorld[3];  // GpuObject.objectFromWorld, unrounded
+    dvec4 parameters;          // x = a tapered cylinder's s (GpuObject.shape.y); yzw unused
 };
 #endif
 

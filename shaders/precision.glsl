@@ -40,37 +40,31 @@ const float NAIVE_EPSILON = 1e-4;
 // normal n it leaves to). The one implementation of the offset; each mode
 // keeps its own:
 //   naive   p moved by the fixed epsilon along n (and tMin = NAIVE_EPSILON);
-//   robust  Ray Tracing Gems ch. 6 (Waechter and Binder): each coordinate
-//           moves a fixed number of ulps of itself along the normal, so the
-//           offset grows with |p| like the rounding error of p; coordinates
-//           near 0, where ulps vanish, move by a small constant (the
-//           OFFSET_* constants of layout.h);
-//   fp64    the same idea in double (below).
+//   robust  after Ray Tracing Gems ch. 6 (Waechter and Binder): moved along
+//           n by a distance that grows with |p| like the rounding error of p
+//           and of the ray re-intersecting the surface: 2^-18 of the largest
+//           coordinate, 32 to 64 of its float spacings (OFFSET_SCALE of
+//           layout.h), or a small constant near the origin;
+//   fp64    the same in double (2^-47 of the largest coordinate, 2^-45 near
+//           the origin).
 vec3 naiveOffsetRayOrigin(vec3 p, vec3 n) { return p + NAIVE_EPSILON * n; }
 
-
 #if VKRAY_PRECISION_FP64
-// fp64: RTG6 carried over to double: each coordinate moves about 256
-// spacings of itself (2^-44 |p|), or 2^-45 near the origin.
-const double OFFSET_DOUBLE_RELATIVE = 256.0lf / 4503599627370496.0lf;  // 256 * 2^-52
-const double OFFSET_DOUBLE_NEAR_ORIGIN = 1.0lf / 35184372088832.0lf;   // 2^-45
+const double OFFSET_DOUBLE_SCALE = 1.0lf / 140737488355328.0lf;  // 2^-47 = 32 * 2^-52
+const double OFFSET_DOUBLE_NEAR_ORIGIN_STEP = 1.0lf / 35184372088832.0lf;  // 2^-45
 #endif
 
 rvec3 offsetOrigin(rvec3 p, vec3 n, vec3 side) {
     if (dot(n, side) < 0.0) n = -n;
 #if VKRAY_PRECISION_NAIVE
     return naiveOffsetRayOrigin(p, n);
-#elif VKRAY_PRECISION_FP64
-    return p + dvec3(n) * max(abs(p) * OFFSET_DOUBLE_RELATIVE, dvec3(OFFSET_DOUBLE_NEAR_ORIGIN));
 #else
-    ivec3 ulps = ivec3(OFFSET_INT_SCALE * n);
-    // Adding to the bit pattern of a negative float moves it away from zero.
-    ivec3 bits = floatBitsToInt(p) + ivec3(p.x < 0.0 ? -ulps.x : ulps.x,
-                                           p.y < 0.0 ? -ulps.y : ulps.y,
-                                           p.z < 0.0 ? -ulps.z : ulps.z);
-    vec3 moved = intBitsToFloat(bits);
-    return vec3(abs(p.x) < OFFSET_NEAR_ORIGIN ? p.x + OFFSET_FLOAT_SCALE * n.x : moved.x,
-                abs(p.y) < OFFSET_NEAR_ORIGIN ? p.y + OFFSET_FLOAT_SCALE * n.y : moved.y,
-                abs(p.z) < OFFSET_NEAR_ORIGIN ? p.z + OFFSET_FLOAT_SCALE * n.z : moved.z);
+    real largest = max(abs(p.x), max(abs(p.y), abs(p.z)));
+#if VKRAY_PRECISION_FP64
+    real step = max(OFFSET_DOUBLE_SCALE * largest, OFFSET_DOUBLE_NEAR_ORIGIN_STEP);
+#else
+    real step = largest < OFFSET_NEAR_ORIGIN ? OFFSET_NEAR_ORIGIN_STEP : OFFSET_SCALE * largest;
+#endif
+    return p + step * rvec3(n);
 #endif
 }

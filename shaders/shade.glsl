@@ -20,11 +20,15 @@ struct Surface {
     vec3 m;
 };
 
-// (M^-1)^T v: a generic normal of GpuObject `index` in world space, unit.
-vec3 toWorldNormal(uint index, vec3 v) {
-    GpuObject object = objects[index];
-    return normalize(v.x * object.objectFromWorld[0].xyz + v.y * object.objectFromWorld[1].xyz +
-                     v.z * object.objectFromWorld[2].xyz);
+// (M^-1)^T v: a generic normal of GpuObject `index` in world space, unit
+// (computed with the ray geometry's M^-1: in double for fp64).
+vec3 toWorldNormal(uint index, rvec3 v) {
+#if VKRAY_PRECISION_FP64
+    dvec4 rows[3] = doubleObjects[index].objectFromWorld;
+#else
+    vec4 rows[3] = objects[index].objectFromWorld;
+#endif
+    return vec3(normalize(v.x * rows[0].xyz + v.y * rows[1].xyz + v.z * rows[2].xyz));
 }
 
 Surface surfaceAt(Hit hit, rvec3 origin, rvec3 direction) {
@@ -74,7 +78,7 @@ vec3 genericPoint(uint index, vec3 p) {
 // k(p) at a hit: (1, 1, 1) unless a texture variant is compiled in.
 vec3 hitTexture(Hit hit, Surface s) {
 #if VKRAY_TEXTURES || VKRAY_PIXMAPS
-    return textureColor(objects[hit.surface], genericPoint(hit.surface, vec3(s.p)), hit.genericNormal);
+    return textureColor(objects[hit.surface], genericPoint(hit.surface, vec3(s.p)), vec3(hit.genericNormal));
 #else
     return vec3(1.0);
 #endif

@@ -56,6 +56,15 @@ void toObjectSpace(uint index, rvec3 origin, rvec3 direction, out rvec3 o, out r
               dot(rows[2].xyz, direction));
 }
 
+// A tapered cylinder's s (GpuObject.shape.y's float bits; unrounded in fp64).
+real taperOf(uint index) {
+#if VKRAY_PRECISION_FP64
+    return doubleObjects[index].parameters.x;
+#else
+    return uintBitsToFloat(objects[index].shape.y);
+#endif
+}
+
 // Only the shapes of this variant are compiled in.
 #include "shapes/span.glsl"
 #if VKRAY_SHAPE_SPHERE
@@ -87,8 +96,8 @@ struct Hit {
     real t;
     int object;          // the scene object (its id), -1 for none
     uint surface;        // the GpuObject whose surface was hit (a CSG primitive, or the object)
-    vec3 genericNormal;  // outward, in the generic space of `surface`
-    vec3 geometricNormal;  // the same, but a mesh's triangle's own instead of the interpolated
+    rvec3 genericNormal;  // outward, in the generic space of `surface`
+    rvec3 geometricNormal;  // the same, but a mesh's triangle's own instead of the interpolated
 };
 
 // The nearest hit of object `index` in (0, tMax); for a CSG object, the
@@ -133,7 +142,7 @@ bool intersectObject(uint index, rvec3 origin, rvec3 direction, real tMax, out r
 #endif
 #if VKRAY_SHAPE_TAPERED_CYLINDER
     case KIND_TAPERED_CYLINDER:
-        hit = intersectTaperedCylinder(o, d, uintBitsToFloat(object.shape.y), tMin, tMax, t, n); break;
+        hit = intersectTaperedCylinder(o, d, taperOf(index), tMin, tMax, t, n); break;
 #endif
 #if VKRAY_SHAPE_TORUS
     case KIND_TORUS: hit = intersectTorus(o, d, tMin, tMax, t, n); break;
@@ -147,8 +156,13 @@ bool intersectObject(uint index, rvec3 origin, rvec3 direction, real tMax, out r
 // Surfaces that coincide (stacked cubes, a def used twice) are hit at the same
 // t up to rounding. Hits within this relative distance count as a tie, won by
 // the lower object index, as in the CPU reference, so the choice does not
-// depend on the order the BVH happens to visit them.
-const float TIE_TOLERANCE = 1e-6;
+// depend on the order the BVH happens to visit them. The tolerance is sized
+// to the arithmetic: float's, or in fp64 the CPU reference's (double).
+#if VKRAY_PRECISION_FP64
+const real TIE_TOLERANCE = 1e-9;
+#else
+const real TIE_TOLERANCE = 1e-6;
+#endif
 
 // Tests object `index` for a scene walk (walkScene): a closer hit replaces
 // `hit`; for a shadow feeler (VKRAY_SHADOWS), any hit before hit.t passes the
@@ -172,8 +186,8 @@ void testObject(uint index, rvec3 origin, rvec3 direction, bool feeler, inout Hi
         hit.t = t;
         hit.object = int(index);
         hit.surface = surface;
-        hit.genericNormal = vec3(n);
-        hit.geometricNormal = vec3(geometric);
+        hit.genericNormal = n;
+        hit.geometricNormal = geometric;
     }
 }
 
@@ -194,8 +208,8 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
     hit.t = tMax;
     hit.object = -1;
     hit.surface = 0u;
-    hit.genericNormal = vec3(0.0);
-    hit.geometricNormal = vec3(0.0);
+    hit.genericNormal = rvec3(0.0);
+    hit.geometricNormal = rvec3(0.0);
     through = 1.0;
 #if VKRAY_OBJECT_BVH
     // The unbounded objects (planes) first, as if a leaf, then the BVH's

@@ -84,6 +84,7 @@ GpuDoubleObject packDoubleObject(const SceneObject& object) {
     const glm::dmat4& inv = object.objectFromWorld;
     for (int row = 0; row < 3; ++row)
         g.objectFromWorld[row] = {inv[0][row], inv[1][row], inv[2][row], inv[3][row]};
+    if (gpuKindOf(object.type) == KIND_TAPERED_CYLINDER) g.parameters.x = object.taper;
     return g;
 }
 

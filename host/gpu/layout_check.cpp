@@ -43,7 +43,8 @@ static_assert(sizeof(dvec4) == 32 && alignof(dvec4) == 32);
 static_assert(offsetof(GpuDoubleCamera, cameraU) == 32);
 static_assert(offsetof(GpuDoubleCamera, cameraN) == 96);
 static_assert(sizeof(GpuDoubleCamera) == 128);
-static_assert(sizeof(GpuDoubleObject) == 96);
+static_assert(offsetof(GpuDoubleObject, parameters) == 96);
+static_assert(sizeof(GpuDoubleObject) == 128);
 
 static_assert(sizeof(TileParams) == 16);
 

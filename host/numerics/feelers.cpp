@@ -79,13 +79,12 @@ constexpr float kNaiveEpsilon = 1e-4f;  // shaders/precision.glsl NAIVE_EPSILON
 
 // shaders/precision.glsl offsetOrigin, per mode.
 FVec offsetOrigin(Precision precision, FVec p, FVec n) {
-    return precision == Precision::Naive ? p + kNaiveEpsilon * n : offsetRayOriginRtg6(p, n);
+    return precision == Precision::Naive ? p + kNaiveEpsilon * n : offsetRayOriginRobust(p, n);
 }
 Vec3<double> offsetOrigin(Precision, Vec3<double> p, Vec3<double> n) {
-    constexpr double kRelative = 0x1p-44, kNearOrigin = 0x1p-45;  // OFFSET_DOUBLE_*
-    Vec3<double> out;
-    for (int i = 0; i < 3; ++i) out[i] = p[i] + n[i] * std::max(std::abs(p[i]) * kRelative, kNearOrigin);
-    return out;
+    constexpr double kScale = 0x1p-47, kNearOriginStep = 0x1p-45;  // OFFSET_DOUBLE_*
+    const double largest = std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
+    return p + std::max(kScale * largest, kNearOriginStep) * n;
 }
 
 template <typename T>
@@ -216,20 +215,12 @@ FeelerStats refractionExitErrorsIn(const Scene& scene, const CameraBasis& camera
 
 }  // namespace
 
-Vec3<float> offsetRayOriginRtg6(Vec3<float> p, Vec3<float> n) {
+Vec3<float> offsetRayOriginRobust(Vec3<float> p, Vec3<float> n) {
     // shaders/layout.h: the shader's constants.
-    constexpr float kOrigin = gpu::OFFSET_NEAR_ORIGIN;  // below this, spacings are too small: add a fixed offset
-    constexpr float kFloatScale = gpu::OFFSET_FLOAT_SCALE;
-    constexpr float kIntScale = gpu::OFFSET_INT_SCALE;  // float spacings per unit of normal
-    FVec out;
-    for (int i = 0; i < 3; ++i) {
-        const std::int32_t steps = std::isfinite(n[i]) ? std::int32_t(kIntScale * n[i]) : 0;
-        const std::int32_t bits = std::bit_cast<std::int32_t>(p[i]);
-        // Moving away from zero is + on the bit pattern of a positive float, - on a negative one.
-        const float moved = std::bit_cast<float>(bits + (p[i] < 0 ? -steps : steps));
-        out[i] = std::abs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : moved;
-    }
-    return out;
+    const float largest = std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
+    const float step = largest < gpu::OFFSET_NEAR_ORIGIN ? gpu::OFFSET_NEAR_ORIGIN_STEP
+                                                         : gpu::OFFSET_SCALE * largest;
+    return p + step * n;
 }
 
 FeelerStats shadowFeelerAcne(const Scene& scene, const CameraBasis& camera,

@@ -17,7 +17,7 @@
 // world (rebased on the eye for robust and fp64), the object's M^-1 (float
 // inverse for naive), the origin moved off the surface as offsetOrigin() of
 // shaders/precision.glsl does (fixed epsilon 1e-4 with tMin 1e-4 for naive,
-// Ray Tracing Gems ch. 6 for robust, its double form for fp64), and
+// after Ray Tracing Gems ch. 6 for robust, its double form for fp64), and
 // intersected with the robust formulas of numerics/generic_shapes.h, in
 // IEEE single (no contraction), or double for fp64.
 #pragma once
@@ -46,10 +46,10 @@ FeelerStats refractionExitErrors(const Scene& scene, const CameraBasis& camera,
                                  const std::vector<OraclePixel>& oracle,
                                  const std::vector<ModeSample>& samples, Precision precision);
 
-// Ray Tracing Gems ch. 6 (Waechter and Binder): p moved off the surface along
-// n by OFFSET_INT_SCALE float spacings of each coordinate (a fixed 1/65536 near the
-// origin, where spacings vanish). n is the geometric normal on the side the
-// new ray leaves from.
-Vec3<float> offsetRayOriginRtg6(Vec3<float> p, Vec3<float> n);
+// Robust mode's secondary-ray origin (shaders/precision.glsl offsetOrigin):
+// p moved along n by OFFSET_SCALE times its largest coordinate, or by
+// OFFSET_NEAR_ORIGIN_STEP near the origin. n is the geometric normal on the
+// side the new ray leaves from.
+Vec3<float> offsetRayOriginRobust(Vec3<float> p, Vec3<float> n);
 
 }  // namespace vkray::numerics

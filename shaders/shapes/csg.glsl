@@ -58,7 +58,7 @@ SpanList primitiveSpans(uint index, rvec3 origin, rvec3 direction) {
 #endif
 #if VKRAY_SHAPE_TAPERED_CYLINDER
     case KIND_TAPERED_CYLINDER:
-        if (taperedCylinderSpan(o, d, uintBitsToFloat(object.shape.y), t0, n0, t1, n1))
+        if (taperedCylinderSpan(o, d, taperOf(index), t0, n0, t1, n1))
             addSpan(list, t0, n0, t1, n1, index);
         break;
 #endif

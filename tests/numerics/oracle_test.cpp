@@ -180,14 +180,17 @@ TEST(Metrics, FlipsSilhouetteAndErrorBeyondTheBand) {
     EXPECT_FALSE(withinBounds(m));  // the flip and the wrong id fail it
 }
 
-TEST(Feelers, Rtg6OffsetScalesWithTheCoordinate) {
-    // 32 float spacings (OFFSET_INT_SCALE) at 1e5 (spacing 1/128) are 0.25; at 1e-3, a fixed 1/65536.
-    Vec3<float> p = offsetRayOriginRtg6({1e5f, 1e-3f, -1e5f}, {1, 1, 1});
-    EXPECT_EQ(p.x, 100000.25f);
-    EXPECT_EQ(p.y, 1e-3f + 1.0f / 65536.0f);
-    EXPECT_EQ(p.z, -99999.75f);  // toward +z: the magnitude of a negative coordinate shrinks
+TEST(Feelers, RobustOffsetScalesWithTheLargestCoordinate) {
+    // 2^-18 of the largest coordinate (32 to 64 of its float spacings) along
+    // the normal, whichever coordinate that moves: at 1e5, 0.38 along y.
+    Vec3<float> p = offsetRayOriginRobust({1e5f, 1e-3f, -1e5f}, {0, 1, 0});
+    EXPECT_EQ(p.x, 1e5f);
+    EXPECT_EQ(p.y, 1e-3f + 1e5f / 262144.0f);
+    EXPECT_EQ(p.z, -1e5f);
+    // Near the origin (every coordinate within 1/32), a fixed 1/65536.
+    EXPECT_EQ(offsetRayOriginRobust({1e-3f, 0, 0}, {-1, 0, 0}).x, 1e-3f - 1.0f / 65536.0f);
     // A zero normal component leaves its coordinate alone.
-    EXPECT_EQ(offsetRayOriginRtg6({3.0f, 5.0f, 7.0f}, {0, 0, -1}).x, 3.0f);
+    EXPECT_EQ(offsetRayOriginRobust({3.0f, 5.0f, 7.0f}, {0, 0, -1}).x, 3.0f);
 }
 
 }  // namespace

@@ -162,6 +162,14 @@ TEST(StressReport, OneRowPerCaseAndModeInCsvJsonAndHtml) {
 
     const std::string html = toHtml(report);
     EXPECT_EQ(test::xmlProblem(html), "");
+    // Self-contained: no scripts, nothing fetched from another file or the network.
+    for (const char* outside : {"<script", "src=", "<link", "url("})
+        EXPECT_EQ(html.find(outside), std::string::npos) << outside;
+    std::string withoutNamespaces = html;
+    const std::string svgNamespace = "xmlns=\"http://www.w3.org/2000/svg\"";
+    for (size_t at; (at = withoutNamespaces.find(svgNamespace)) != std::string::npos;)
+        withoutNamespaces.erase(at, svgNamespace.size());
+    EXPECT_EQ(withoutNamespaces.find("http"), std::string::npos);
     size_t svgs = 0;
     for (size_t at = html.find("<svg"); at != std::string::npos; at = html.find("<svg", at + 1)) ++svgs;
     EXPECT_EQ(svgs, cases.size());
