@@ -1,7 +1,8 @@
 // The one definition of every structure shared by the host (C++) and the
-// compute shader (GLSL). Only vec4/uvec4/uint/float fields, std430 (and std140)
-// compatible without hidden padding; host/gpu/layout_check.cpp static_asserts
-// every size and offset.
+// compute shader (GLSL). Only vec4/uvec4/uint/float fields (and dvec4 in the
+// structs read by the fp64 variant alone), std430 (and std140) compatible
+// without hidden padding; host/gpu/layout_check.cpp static_asserts every size
+// and offset.
 #ifndef VKRAY_LAYOUT_H
 #define VKRAY_LAYOUT_H
 
@@ -11,6 +12,7 @@ namespace vkray::gpu {
 using uint = std::uint32_t;
 struct alignas(16) vec4 { float x, y, z, w; };
 struct alignas(16) uvec4 { uint x, y, z, w; };
+struct alignas(32) dvec4 { double x, y, z, w; };
 #define VKRAY_CONST(type, name, value) inline constexpr type name = value
 #else
 #define VKRAY_CONST(type, name, value) const type name = value
@@ -48,6 +50,8 @@ VKRAY_CONST(uint, BINDING_TRIANGLES, 9u);     // mesh variant: GpuTriangle[] in 
 VKRAY_CONST(uint, BINDING_CSG_NODES, 10u);    // CSG variant: GpuCsgNode[]
 VKRAY_CONST(uint, BINDING_PIXMAPS, 11u);      // pixmap variant: GpuPixmap[] (slot order)
 VKRAY_CONST(uint, BINDING_TEXELS, 12u);       // pixmap variant: float[] rgb texels of all pixmaps
+VKRAY_CONST(uint, BINDING_DOUBLE_CAMERA, 13u);   // fp64 variant: GpuDoubleCamera
+VKRAY_CONST(uint, BINDING_DOUBLE_OBJECTS, 14u);  // fp64 variant: GpuDoubleObject[], like GpuObject[]
 
 // Bounds of the shader's fixed-size stacks; the host refuses scenes beyond them.
 VKRAY_CONST(uint, BVH_STACK_SIZE, 48u);  // BVH depth (kMaxBvhDepth on the host)
@@ -55,6 +59,20 @@ VKRAY_CONST(uint, CSG_MAX_SPANS, 8u);    // inside-spans per CSG list
 VKRAY_CONST(uint, CSG_MAX_STACK, 4u);    // CSG lists alive at once while evaluating a tree
 VKRAY_CONST(uint, MAX_RECURSION_DEPTH, 8u);  // maxRecursionDepth (kMaxRecursionDepth on the host)
 VKRAY_CONST(uint, MEDIUM_STACK_SIZE, 4u);    // nested transparent objects a ray remembers
+
+// A secondary ray's origin moves off the surface along the normal by
+// OFFSET_SCALE times its largest coordinate, or by OFFSET_NEAR_ORIGIN_STEP
+// when every coordinate is within OFFSET_NEAR_ORIGIN of 0 (float modes;
+// shaders/precision.glsl offsetOrigin, replayed by host/numerics/feelers.cpp).
+// After Ray Tracing Gems ch. 6 (Waechter and Binder), whose 256 float
+// spacings of each coordinate are sized for world coordinates; vkray works in
+// the eye's frame, where a hit point and the re-intersection of a ray leaving
+// it are off by a few spacings of the largest coordinate in any direction:
+// 2^-18 of it (32 to 64 of its spacings) along the normal, whatever its
+// direction (README "Numerics").
+VKRAY_CONST(float, OFFSET_SCALE, 1.0 / 262144.0);
+VKRAY_CONST(float, OFFSET_NEAR_ORIGIN, 1.0 / 32.0);
+VKRAY_CONST(float, OFFSET_NEAR_ORIGIN_STEP, 1.0 / 65536.0);
 
 // GpuObject.shape.z: the secondary rays a hit on the surface spawns, decided
 // on the host in double (reflectivity > minReflectivity, transparency >
@@ -142,6 +160,23 @@ struct FrameParams {
                          // z, w = first and count of unbounded objects in the object index
     uvec4 sampling;      // x = samples per pixel, y = seed, z = maxRecursionDepth; w unused
 };
+
+// The fp64 variant (--precision fp64) reads the ray geometry's inputs in
+// double from these instead of their float copies in FrameParams and
+// GpuObject; the other variants neither bind nor declare them.
+#if defined(__cplusplus) || (defined(VKRAY_PRECISION_FP64) && VKRAY_PRECISION_FP64)
+struct GpuDoubleCamera {
+    dvec4 eye;      // as FrameParams.eye (w = tan(verticalFov / 2))
+    dvec4 cameraU;  // w = aspect
+    dvec4 cameraV;
+    dvec4 cameraN;
+};
+
+struct GpuDoubleObject {
+    dvec4 objectFromWorld[3];  // GpuObject.objectFromWorld, unrounded
+    dvec4 parameters;          // x = a tapered cylinder's s (GpuObject.shape.y); yzw unused
+};
+#endif
 
 // Where the current dispatch writes: the tile's origin and size in pixels
 // (push constant).

@@ -2,7 +2,9 @@
 // with shadow feelers (VKRAY_SHADOWS), textures (textures.glsl), and the
 // reflected (VKRAY_REFLECTION) and refracted (VKRAY_REFRACTION) rays, followed
 // with an explicit stack instead of Hill's recursive shade().
-// Included by trace.comp after walkScene().
+// Included by trace.comp after walkScene(). Secondary rays leave from
+// offsetOrigin() (precision.glsl: the offset of each precision mode); ray
+// geometry is `real` (double in the fp64 variant), shading float.
 
 #include "textures.glsl"
 
@@ -12,49 +14,31 @@
 // the ray, beside which secondary rays leave; and m, n turned to the side of
 // `geometric`, which shades.
 struct Surface {
-    vec3 p;
+    rvec3 p;
     vec3 n;
     vec3 geometric;
     vec3 m;
 };
 
-// (M^-1)^T v: a generic normal of GpuObject `index` in world space, unit.
-vec3 toWorldNormal(uint index, vec3 v) {
-    GpuObject object = objects[index];
-    return normalize(v.x * object.objectFromWorld[0].xyz + v.y * object.objectFromWorld[1].xyz +
-                     v.z * object.objectFromWorld[2].xyz);
+// (M^-1)^T v: a generic normal of GpuObject `index` in world space, unit
+// (computed with the ray geometry's M^-1: in double for fp64).
+vec3 toWorldNormal(uint index, rvec3 v) {
+#if VKRAY_PRECISION_FP64
+    dvec4 rows[3] = doubleObjects[index].objectFromWorld;
+#else
+    vec4 rows[3] = objects[index].objectFromWorld;
+#endif
+    return vec3(normalize(v.x * rows[0].xyz + v.y * rows[1].xyz + v.z * rows[2].xyz));
 }
 
-Surface surfaceAt(Hit hit, vec3 origin, vec3 direction) {
+Surface surfaceAt(Hit hit, rvec3 origin, rvec3 direction) {
     Surface s;
     s.p = origin + hit.t * direction;
     s.n = toWorldNormal(hit.surface, hit.genericNormal);
     s.geometric = toWorldNormal(hit.surface, hit.geometricNormal);
-    if (dot(s.geometric, direction) > 0.0) s.geometric = -s.geometric;
+    if (dot(s.geometric, vec3(direction)) > 0.0) s.geometric = -s.geometric;
     s.m = dot(s.n, s.geometric) < 0.0 ? -s.n : s.n;
     return s;
-}
-
-// The origin of a ray leaving point p toward `side` (a direction; which side
-// of the surface with normal n it leaves to): Ray Tracing Gems ch. 6
-// (Waechter and Binder). Each coordinate moves a fixed number of ulps of
-// itself along the normal, so the offset grows with |p| like the rounding
-// error of p; coordinates near 0, where ulps vanish, move by a small constant.
-const float OFFSET_NEAR_ORIGIN = 1.0 / 32.0;
-const float OFFSET_FLOAT_SCALE = 1.0 / 65536.0;
-const float OFFSET_INT_SCALE = 256.0;
-
-vec3 offsetOrigin(vec3 p, vec3 n, vec3 side) {
-    if (dot(n, side) < 0.0) n = -n;
-    ivec3 ulps = ivec3(OFFSET_INT_SCALE * n);
-    // Adding to the bit pattern of a negative float moves it away from zero.
-    ivec3 bits = floatBitsToInt(p) + ivec3(p.x < 0.0 ? -ulps.x : ulps.x,
-                                           p.y < 0.0 ? -ulps.y : ulps.y,
-                                           p.z < 0.0 ? -ulps.z : ulps.z);
-    vec3 moved = intBitsToFloat(bits);
-    return vec3(abs(p.x) < OFFSET_NEAR_ORIGIN ? p.x + OFFSET_FLOAT_SCALE * n.x : moved.x,
-                abs(p.y) < OFFSET_NEAR_ORIGIN ? p.y + OFFSET_FLOAT_SCALE * n.y : moved.y,
-                abs(p.z) < OFFSET_NEAR_ORIGIN ? p.z + OFFSET_FLOAT_SCALE * n.z : moved.z);
 }
 
 // Light i's term of Hill's local model at surface point s seen from
@@ -67,7 +51,7 @@ vec3 offsetOrigin(vec3 p, vec3 n, vec3 side) {
 // `vkray pixel`).
 vec3 lightTerm(GpuObject object, Surface s, vec3 v, vec3 k, uint i, float through, bool record) {
     vec3 lightColor = lights[i].color.rgb;
-    vec3 toLight = normalize(lights[i].position.xyz - s.p);
+    vec3 toLight = normalize(lights[i].position.xyz - vec3(s.p));
     float mDotS = dot(s.m, toLight);
     float mDotH = dot(s.m, normalize(v + toLight));
     vec3 diffuse = vec3(0.0), specular = vec3(0.0);
@@ -94,7 +78,7 @@ vec3 genericPoint(uint index, vec3 p) {
 // k(p) at a hit: (1, 1, 1) unless a texture variant is compiled in.
 vec3 hitTexture(Hit hit, Surface s) {
 #if VKRAY_TEXTURES || VKRAY_PIXMAPS
-    return textureColor(objects[hit.surface], genericPoint(hit.surface, s.p), hit.genericNormal);
+    return textureColor(objects[hit.surface], genericPoint(hit.surface, vec3(s.p)), vec3(hit.genericNormal));
 #else
     return vec3(1.0);
 #endif
@@ -140,8 +124,8 @@ vec3 refracted(vec3 d, Surface s, float objectSpeed, inout Medium medium) {
 
 // One ray still to follow: it adds weight times what it sees.
 struct RayTask {
-    vec3 origin;
-    vec3 direction;
+    rvec3 origin;
+    rvec3 direction;
     vec3 weight;
     uint level;  // 0: the primary ray
     Medium medium;
@@ -162,7 +146,7 @@ const uint RAY_STACK_SIZE = 1u;
 // a hit are visited one per step, each with its shadow feeler, so that the
 // loop walks the scene (walkScene) in one place only. `primary` and
 // `primaryNormal` (m) describe the first hit, for the AOVs.
-vec3 radiance(vec3 origin, vec3 direction, out Hit primary, out vec3 primaryNormal) {
+vec3 radiance(rvec3 origin, rvec3 direction, out Hit primary, out vec3 primaryNormal) {
     primaryNormal = vec3(0.0);
     vec3 color = vec3(0.0);
     RayTask stack[RAY_STACK_SIZE];
@@ -175,15 +159,15 @@ vec3 radiance(vec3 origin, vec3 direction, out Hit primary, out vec3 primaryNorm
     vec3 k;
     uint light = frame.counts.x;
 #if VKRAY_SHADOWS
-    vec3 feelerOrigin;
+    rvec3 feelerOrigin;
 #endif
     while (true) {
         // This step's walk: the feeler toward the next light, or the next ray.
-        vec3 walkOrigin, walkDirection;
-        float walkMax = INFINITY;
+        rvec3 walkOrigin, walkDirection;
+        real walkMax = INFINITY;
         bool feeler = light < frame.counts.x;
         if (feeler) {
-            bool facing = dot(s.m, lights[light].position.xyz - s.p) > 0.0;
+            bool facing = dot(s.m, lights[light].position.xyz - vec3(s.p)) > 0.0;
 #if VKRAY_SHADOWS
             if (facing) {
                 walkOrigin = feelerOrigin;
@@ -194,7 +178,7 @@ vec3 radiance(vec3 origin, vec3 direction, out Hit primary, out vec3 primaryNorm
 #endif
             {
                 // Behind the surface (a = 0), or no object that could shadow.
-                color += ray.weight * lightTerm(object, s, -ray.direction, k, light,
+                color += ray.weight * lightTerm(object, s, -vec3(ray.direction), k, light,
                                                 facing ? 1.0 : 0.0, ray.level == 0u);
                 ++light;
                 continue;
@@ -211,7 +195,7 @@ vec3 radiance(vec3 origin, vec3 direction, out Hit primary, out vec3 primaryNorm
         walkScene(walkOrigin, walkDirection, walkMax, feeler, hit, through);
 
         if (feeler) {
-            color += ray.weight * lightTerm(object, s, -ray.direction, k, light, through,
+            color += ray.weight * lightTerm(object, s, -vec3(ray.direction), k, light, through,
                                             ray.level == 0u);
             ++light;
             continue;
@@ -243,15 +227,15 @@ vec3 radiance(vec3 origin, vec3 direction, out Hit primary, out vec3 primaryNorm
 #if VKRAY_REFRACTION
         if ((object.shape.z & FOLLOW_REFRACTION) != 0u) {
             Medium medium = ray.medium;
-            vec3 t = refracted(ray.direction, s, object.material.z, medium);
+            vec3 t = refracted(vec3(ray.direction), s, object.material.z, medium);
             stack[top++] = RayTask(offsetOrigin(s.p, s.geometric, t), t,
                                    ray.weight * object.material.y, ray.level + 1u, medium);
         }
 #endif
 #if VKRAY_REFLECTION
         if ((object.shape.z & FOLLOW_REFLECTION) != 0u) {
-            vec3 r = normalize(ray.direction - 2.0 * dot(ray.direction, s.m) * s.m);
-            stack[top++] = RayTask(offsetOrigin(s.p, s.geometric, r), r,
+            rvec3 r = normalize(ray.direction - 2.0 * dot(ray.direction, rvec3(s.m)) * rvec3(s.m));
+            stack[top++] = RayTask(offsetOrigin(s.p, s.geometric, vec3(r)), r,
                                    ray.weight * object.material.x, ray.level + 1u, ray.medium);
         }
 #endif

@@ -9,7 +9,8 @@
 // _ANTIALIAS add the parts of Whitted shading the scene uses;
 // VKRAY_OBJECT_BVH finds objects through a BVH instead of testing each;
 // VKRAY_DEBUG_PIXEL (for `vkray pixel`) also records every step of the one
-// ray the host dispatches into the debug buffer.
+// ray the host dispatches into the debug buffer. VKRAY_PRECISION_NAIVE
+// selects the textbook float formulas (precision.glsl).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -17,6 +18,7 @@
 #if VKRAY_ANTIALIAS
 #include "sampling.h"
 #endif
+#include "precision.glsl"
 
 layout(local_size_x = WORKGROUP_X, local_size_y = WORKGROUP_Y, local_size_z = 1) in;
 
@@ -31,19 +33,36 @@ layout(std430, set = 0, binding = BINDING_DEBUG) writeonly buffer DebugBlock {
     GpuDebugEntry debugEntries[];  // objects, then lights
 };
 #endif
+#if VKRAY_PRECISION_FP64
+// The camera and every M^-1 in double, read instead of their float copies
+// in FrameParams and GpuObject.
+layout(std430, set = 0, binding = BINDING_DOUBLE_CAMERA) readonly buffer DoubleCameraBlock { GpuDoubleCamera doubleCamera; };
+layout(std430, set = 0, binding = BINDING_DOUBLE_OBJECTS) readonly buffer DoubleObjectBlock { GpuDoubleObject doubleObjects[]; };
+#endif
 
 const float INFINITY = 1.0 / 0.0;
 
 // The world ray in an object's generic space: M^-1 applied and the direction
 // not renormalised, so the generic t is the world t.
-void toObjectSpace(uint index, vec3 origin, vec3 direction, out vec3 o, out vec3 d) {
-    GpuObject object = objects[index];
-    o = vec3(dot(object.objectFromWorld[0], vec4(origin, 1.0)),
-             dot(object.objectFromWorld[1], vec4(origin, 1.0)),
-             dot(object.objectFromWorld[2], vec4(origin, 1.0)));
-    d = vec3(dot(object.objectFromWorld[0].xyz, direction),
-             dot(object.objectFromWorld[1].xyz, direction),
-             dot(object.objectFromWorld[2].xyz, direction));
+void toObjectSpace(uint index, rvec3 origin, rvec3 direction, out rvec3 o, out rvec3 d) {
+#if VKRAY_PRECISION_FP64
+    dvec4 rows[3] = doubleObjects[index].objectFromWorld;
+#else
+    vec4 rows[3] = objects[index].objectFromWorld;
+#endif
+    o = rvec3(dot(rows[0], rvec4(origin, 1.0)), dot(rows[1], rvec4(origin, 1.0)),
+              dot(rows[2], rvec4(origin, 1.0)));
+    d = rvec3(dot(rows[0].xyz, direction), dot(rows[1].xyz, direction),
+              dot(rows[2].xyz, direction));
+}
+
+// A tapered cylinder's s (GpuObject.shape.y's float bits; unrounded in fp64).
+real taperOf(uint index) {
+#if VKRAY_PRECISION_FP64
+    return doubleObjects[index].parameters.x;
+#else
+    return uintBitsToFloat(objects[index].shape.y);
+#endif
 }
 
 // Only the shapes of this variant are compiled in.
@@ -74,18 +93,22 @@ void toObjectSpace(uint index, vec3 origin, vec3 direction, out vec3 o, out vec3
 #endif
 
 struct Hit {
-    float t;
+    real t;
     int object;          // the scene object (its id), -1 for none
     uint surface;        // the GpuObject whose surface was hit (a CSG primitive, or the object)
-    vec3 genericNormal;  // outward, in the generic space of `surface`
-    vec3 geometricNormal;  // the same, but a mesh's triangle's own instead of the interpolated
+    rvec3 genericNormal;  // outward, in the generic space of `surface`
+    rvec3 geometricNormal;  // the same, but a mesh's triangle's own instead of the interpolated
 };
 
 // The nearest hit of object `index` in (0, tMax); for a CSG object, the
 // primitive whose surface it is. `geometric` differs from n only on meshes.
-bool intersectObject(uint index, vec3 origin, vec3 direction, float tMax, out float t,
-                     out vec3 n, out vec3 geometric, out uint surface) {
-    const float tMin = 0.0;
+bool intersectObject(uint index, rvec3 origin, rvec3 direction, real tMax, out real t,
+                     out rvec3 n, out rvec3 geometric, out uint surface) {
+#if VKRAY_PRECISION_NAIVE
+    const real tMin = NAIVE_EPSILON;  // the textbook's fixed epsilon, on every ray
+#else
+    const real tMin = 0.0;  // robust: secondary rays start off the surface (offsetOrigin)
+#endif
     surface = index;
     GpuObject object = objects[index];
 #if VKRAY_CSG
@@ -97,7 +120,7 @@ bool intersectObject(uint index, vec3 origin, vec3 direction, float tMax, out fl
         return hit;
     }
 #endif
-    vec3 o, d;
+    rvec3 o, d;
     toObjectSpace(index, origin, direction, o, d);
 #if VKRAY_SHAPE_MESH
     if (object.shape.x == KIND_MESH)
@@ -119,7 +142,7 @@ bool intersectObject(uint index, vec3 origin, vec3 direction, float tMax, out fl
 #endif
 #if VKRAY_SHAPE_TAPERED_CYLINDER
     case KIND_TAPERED_CYLINDER:
-        hit = intersectTaperedCylinder(o, d, uintBitsToFloat(object.shape.y), tMin, tMax, t, n); break;
+        hit = intersectTaperedCylinder(o, d, taperOf(index), tMin, tMax, t, n); break;
 #endif
 #if VKRAY_SHAPE_TORUS
     case KIND_TORUS: hit = intersectTorus(o, d, tMin, tMax, t, n); break;
@@ -133,18 +156,23 @@ bool intersectObject(uint index, vec3 origin, vec3 direction, float tMax, out fl
 // Surfaces that coincide (stacked cubes, a def used twice) are hit at the same
 // t up to rounding. Hits within this relative distance count as a tie, won by
 // the lower object index, as in the CPU reference, so the choice does not
-// depend on the order the BVH happens to visit them.
-const float TIE_TOLERANCE = 1e-6;
+// depend on the order the BVH happens to visit them. The tolerance is sized
+// to the arithmetic: float's, or in fp64 the CPU reference's (double).
+#if VKRAY_PRECISION_FP64
+const real TIE_TOLERANCE = 1e-9;
+#else
+const real TIE_TOLERANCE = 1e-6;
+#endif
 
 // Tests object `index` for a scene walk (walkScene): a closer hit replaces
 // `hit`; for a shadow feeler (VKRAY_SHADOWS), any hit before hit.t passes the
 // surface's transparency into `through`.
-void testObject(uint index, vec3 origin, vec3 direction, bool feeler, inout Hit hit,
+void testObject(uint index, rvec3 origin, rvec3 direction, bool feeler, inout Hit hit,
                 inout float through) {
-    float t;
-    vec3 n, geometric;
+    real t;
+    rvec3 n, geometric;
     uint surface;
-    float tMax = feeler ? hit.t : hit.t * (1.0 + TIE_TOLERANCE);
+    real tMax = feeler ? hit.t : hit.t * (1.0 + TIE_TOLERANCE);
     if (!intersectObject(index, origin, direction, tMax, t, n, geometric, surface)) return;
 #if VKRAY_SHADOWS
     if (feeler) {
@@ -175,25 +203,25 @@ layout(std430, set = 0, binding = BINDING_OBJECT_INDEX) readonly buffer ObjectIn
 // stopping at 0. This is the shader's only call of testObject: lavapipe
 // inlines every function, so one call site keeps the shapes' code (CSG
 // above all) compiled once.
-void walkScene(vec3 origin, vec3 direction, float tMax, bool feeler, out Hit hit,
+void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hit,
                out float through) {
     hit.t = tMax;
     hit.object = -1;
     hit.surface = 0u;
-    hit.genericNormal = vec3(0.0);
-    hit.geometricNormal = vec3(0.0);
+    hit.genericNormal = rvec3(0.0);
+    hit.geometricNormal = rvec3(0.0);
     through = 1.0;
 #if VKRAY_OBJECT_BVH
     // The unbounded objects (planes) first, as if a leaf, then the BVH's
     // leaves front to back. A feeler keeps hit.t = tMax: it visits every
     // node it crosses.
     uint leafFirst = frame.counts.z, leafCount = frame.counts.w;
-    vec3 invD = 1.0 / direction;
+    rvec3 invD = 1.0 / direction;
     uint stack[BVH_STACK_SIZE];
-    float stackEnter[BVH_STACK_SIZE];
+    real stackEnter[BVH_STACK_SIZE];
     uint top = 0u;
     uint node = 0u;
-    float enter;
+    real enter;
     GpuBvhNode root = objectNodes[0];
     bool walking = hitsBox(root.lo.xyz, root.hi.xyz, origin, invD, 0.0, hit.t, enter);
     bool leafDone = false;  // the last leaf is tested: the walk goes on from the stack
@@ -212,7 +240,7 @@ void walkScene(vec3 origin, vec3 direction, float tMax, bool feeler, out Hit hit
                     break;
                 }
                 uint nearIndex, farIndex;
-                float farEnter;
+                real farEnter;
                 int hits = orderChildren(objectNodes[node + 1u], node + 1u, objectNodes[first], first,
                                          origin, invD, 0.0, hit.t, nearIndex, farIndex, farEnter);
                 if (hits == 2) {
@@ -246,11 +274,11 @@ void walkScene(vec3 origin, vec3 direction, float tMax, bool feeler, out Hit hit
 
 #if VKRAY_DEBUG_PIXEL
 // Every object on its own, for `vkray pixel`: its generic ray and nearest t.
-void recordObjectTests(vec3 origin, vec3 direction) {
+void recordObjectTests(rvec3 origin, rvec3 direction) {
     for (uint i = 0u; i < frame.image.w; ++i) {
-        vec3 o, d, n, geometric;
+        rvec3 o, d, n, geometric;
         toObjectSpace(i, origin, direction, o, d);
-        float t;
+        real t;
         uint surface;
         if (!intersectObject(i, origin, direction, INFINITY, t, n, geometric, surface)) t = INFINITY;
         debugEntries[i] = GpuDebugEntry(vec4(o, t), vec4(d, 0.0));
@@ -260,13 +288,18 @@ void recordObjectTests(vec3 origin, vec3 direction) {
 
 // The unit direction of the primary ray through image point (x right, y
 // down, in pixels).
-vec3 primaryDirection(vec2 imagePoint) {
-    vec2 screen = vec2(2.0 * imagePoint.x / float(frame.image.x) - 1.0,
-                       1.0 - 2.0 * imagePoint.y / float(frame.image.y));
-    float tanHalfFov = frame.eye.w;
-    float aspect = frame.cameraU.w;
-    return normalize(-frame.cameraN.xyz + screen.x * tanHalfFov * aspect * frame.cameraU.xyz +
-                     screen.y * tanHalfFov * frame.cameraV.xyz);
+rvec3 primaryDirection(vec2 imagePoint) {
+    rvec2 screen = rvec2(2.0 * real(imagePoint.x) / real(frame.image.x) - 1.0,
+                         1.0 - 2.0 * real(imagePoint.y) / real(frame.image.y));
+#if VKRAY_PRECISION_FP64
+    GpuDoubleCamera camera = doubleCamera;
+#else
+    FrameParams camera = frame;
+#endif
+    real tanHalfFov = camera.eye.w;
+    real aspect = camera.cameraU.w;
+    return normalize(-camera.cameraN.xyz + screen.x * tanHalfFov * aspect * camera.cameraU.xyz +
+                     screen.y * tanHalfFov * camera.cameraV.xyz);
 }
 
 void main() {
@@ -278,7 +311,11 @@ void main() {
     uvec2 first = rayInTile * block;  // first pixel of the block, tile-relative
     if (first.x >= tileSize.x || first.y >= tileSize.y) return;
     uvec2 pixel = tileOrigin + first;
-    vec3 origin = frame.eye.xyz;
+#if VKRAY_PRECISION_FP64
+    rvec3 origin = doubleCamera.eye.xyz;
+#else
+    rvec3 origin = frame.eye.xyz;
+#endif
 
     // Its samples: the centre, or (VKRAY_ANTIALIAS) N jittered in a grid of
     // cells (sampling.h, shared with the CPU reference); the colour is their
@@ -291,7 +328,7 @@ void main() {
 #endif
     GpuPixel result;
     vec3 sum = vec3(0.0);
-    vec3 direction, p;
+    rvec3 direction, p;
     Hit hit;
     for (uint k = 0u; k < samples; ++k) {
         vec2 offset = vec2(0.5);
@@ -300,7 +337,7 @@ void main() {
             offset = vec2(sampleOffsetX(frame.sampling.y, pixelIndex, k, samples),
                           sampleOffsetY(frame.sampling.y, pixelIndex, k, samples));
 #endif
-        vec3 sampleDirection = primaryDirection(vec2(pixel) + offset * float(block));
+        rvec3 sampleDirection = primaryDirection(vec2(pixel) + offset * float(block));
         Hit sampleHit;
         vec3 m;
         sum += radiance(origin, sampleDirection, sampleHit, m);
@@ -308,12 +345,12 @@ void main() {
             direction = sampleDirection;
             hit = sampleHit;
             if (hit.object < 0) {
-                p = vec3(0.0);
+                p = rvec3(0.0);
                 result.color.w = INFINITY;
                 result.normal = vec4(0.0, 0.0, 0.0, intBitsToFloat(-1));
             } else {
                 p = origin + hit.t * direction;
-                result.color.w = hit.t;
+                result.color.w = float(hit.t);
                 result.normal = vec4(m, intBitsToFloat(hit.object));
             }
         }

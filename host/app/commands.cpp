@@ -2,6 +2,7 @@
 
 #include "app/pixel_report.h"
 #include "app/progress.h"
+#include "app/stress_command.h"
 #include "app/watch.h"
 #include "dist/distributed_render.h"
 #include "dist/mpi_world.h"
@@ -111,7 +112,7 @@ struct GpuSession {
             out << "device: " << device.name << " (" << device.type << ", " << device.driverName
                 << " " << device.driverInfo << ")\n";
             tracer = std::make_unique<gpu::GpuTracer>(
-                *context, gpu::GpuRenderOptions{.shaderDirectory = shaderDirectory(o), .allFeatures = o.allFeatures, .userDefines = o.defines});
+                *context, gpu::GpuRenderOptions{.shaderDirectory = shaderDirectory(o), .allFeatures = o.allFeatures, .userDefines = o.defines, .precision = o.precision});
         }
         return *tracer;
     }
@@ -152,8 +153,9 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
         Frame frame = tracer.render(scene, camera, settings, &stats, progressTo(display));
         display.finish();
         reportShader(stats, o, out);
-        out << "gpu render: " << fixed(stats.renderSeconds, 3) << " s, " << stats.tiles
-            << " tiles, " << fixed(mrays(stats.rays, stats.renderSeconds), 2) << " Mrays/s\n";
+        out << "gpu render: " << fixed(stats.renderSeconds, 3) << " s, precision "
+            << precisionName(o.precision) << ", " << stats.tiles << " tiles, "
+            << fixed(mrays(stats.rays, stats.renderSeconds), 2) << " Mrays/s\n";
         session.requireNoValidationMessages(o);
         return frame;
     }
@@ -172,8 +174,9 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
         tiles += count;
     }
     const std::size_t workerTiles = tiles - shares.tilesPerRank[0];
-    out << "gpu render: " << fixed(seconds, 3) << " s, " << tiles << " tiles on " << world.size()
-        << " MPI ranks (tiles per rank: " << perRank << "; hand-out "
+    out << "gpu render: " << fixed(seconds, 3) << " s, precision " << precisionName(o.precision)
+        << ", " << tiles << " tiles on " << world.size() << " MPI ranks (tiles per rank: "
+        << perRank << "; hand-out "
         << fixed(workerTiles ? 1e3 * shares.handOutSeconds / double(workerTiles) : 0.0, 3)
         << " ms a tile), " << fixed(mrays(primaryRays(settings), seconds), 2) << " Mrays/s\n";
     session.requireNoValidationMessages(o);
@@ -351,7 +354,8 @@ int runShadersCheck(const Options& o, std::ostream& out, std::ostream& err) {
     for (const gpu::ShaderFeatures& features : variants) {
         const auto start = Clock::now();
         try {
-            gpu::compileComputeShader({directory, "trace.comp", gpu::definesFor(features)});
+            gpu::compileComputeShader(
+                {directory, "trace.comp", gpu::definesFor(features, precisionDefines(o.precision))});
             out << "ok    " << gpu::describe(features) << " (" << fixed(secondsSince(start), 2)
                 << " s)\n";
         } catch (const Error& e) {
@@ -360,7 +364,8 @@ int runShadersCheck(const Options& o, std::ostream& out, std::ostream& err) {
             err << e.what() << "\n";
         }
     }
-    out << variants.size() - failures << " of " << variants.size() << " variants compiled"
+    out << variants.size() - failures << " of " << variants.size() << " variants compiled ("
+        << precisionName(o.precision) << ")"
         << (failures ? ", " + std::to_string(failures) + " failed" : std::string()) << "\n";
     return failures ? 1 : 0;
 }
@@ -419,6 +424,8 @@ int runDevices(std::ostream& out) {
 
 }  // namespace
 
+std::string shaderDirectoryFor(const Options& o) { return shaderDirectory(o); }
+
 int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
     if (dist::World::current().distributed() && o.command != Command::Render)
         throw Error("only `vkray render` runs across MPI ranks; run this command without mpirun");
@@ -432,6 +439,8 @@ int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
     case Command::ShadersCheck: return runShadersCheck(o, out, err);
     case Command::Compare: return runCompare(o, out);
     case Command::Devices: return runDevices(out);
+    case Command::Stress: return runStress(o, out, err);
+    case Command::Report: return runReport(o, out, err);
     }
     return 1;
 }

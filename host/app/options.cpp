@@ -104,6 +104,13 @@ const std::map<std::string, Flag>& renderFlags() {
         {"--watch", {false, [](Options& o, const std::string&) { o.watch = true; }}},
         {"--quiet", {false, [](Options& o, const std::string&) { o.quiet = true; }}},
         {"--all", {false, [](Options& o, const std::string&) { o.everyVariant = true; }}},
+        {"--precision", {true, [](Options& o, const std::string& v) {
+             o.precision = parsePrecision("--precision", v);
+             o.precisionGiven = true;
+         }}},
+        {"--out", {true, [](Options& o, const std::string& v) { o.outDirectory = v; }}},
+        {"--cases", {true, [](Options& o, const std::string& v) { o.casesPattern = v; }}},
+        {"--cases-dir", {true, [](Options& o, const std::string& v) { o.casesDirectory = v; }}},
         {"--diff", {true, [](Options& o, const std::string& v) { o.diffPath = v; }}},
         {"--fail", {true, [](Options& o, const std::string& v) {
              o.failThreshold = parseNumber("--fail", v);
@@ -135,15 +142,24 @@ void parseDefine(const std::string& text, Options& o) {
 
 // Which flags each command takes, besides render's full set.
 bool accepts(Command command, const std::string& flag) {
+    const bool numericsOnly = flag == "--out" || flag == "--cases" || flag == "--cases-dir";
     switch (command) {
-    case Command::Render: return flag != "--all";
+    case Command::Render: return flag != "--all" && !numericsOnly;
     case Command::Pixel:
         return flag != "-o" && flag != "--output" && flag != "--aov" && flag != "--cpu" &&
                flag != "--check" && flag != "--diff" && flag != "--fail" &&
                flag != "--failpercent" && flag != "--watch" && flag != "--threads" &&
-               flag != "--all" && flag != "--spp" && flag != "--seed";
+               flag != "--all" && flag != "--spp" && flag != "--seed" && !numericsOnly;
+    case Command::Stress:
+        return flag == "--size" || flag == "--device" || flag == "--threads" ||
+               flag == "--shader-dir" || flag == "--precision" || numericsOnly;
+    case Command::Report:
+        return flag == "--size" || flag == "--device" || flag == "--threads" ||
+               flag == "--shader-dir" || flag == "--out" || flag == "--lenient" ||
+               flag == "--precision" ||
+               flag == "--eye" || flag == "--look" || flag == "--up" || flag == "--fov";
     case Command::Compare: return flag == "--diff" || flag == "--fail" || flag == "--failpercent";
-    case Command::ShadersCheck: return flag == "--shader-dir" || flag == "--all";
+    case Command::ShadersCheck: return flag == "--shader-dir" || flag == "--all" || flag == "--precision";
     default: return false;
     }
 }
@@ -159,6 +175,8 @@ std::string usageText() {
   vkray render SCENE.sdl [-o out.png] [options]   render on the GPU (or --cpu)
   vkray pixel SCENE.sdl X Y [options]             trace one pixel on GPU and CPU, side by side
   vkray compare A B [--ids A.id.pfm B.id.pfm] [--diff FILE] [--fail T] [--failpercent P]
+  vkray stress [--cases PATTERN] [--size WxH] [--out DIR]   precision modes against the oracle
+  vkray report SCENE.sdl [--size WxH] [--out DIR]          error against run time over the knobs
   vkray devices                                   list Vulkan devices
   vkray shaders check [--all] [--shader-dir DIR]  compile the shader variants
   vkray --version | --help
@@ -186,9 +204,16 @@ render options:
   -D NAME=VALUE         define for the shader compile (repeatable)
   --dump-spirv DIR      write the SPIR-V of the variant used to DIR
   --quiet               no progress display on stderr
+  --precision MODE      naive, robust (default) or fp64: float care on the GPU (README "Numerics");
+                        for stress and report: only that mode (default: all)
 
 Ctrl-C (SIGINT, SIGTERM) stops a render between tiles: nothing is written,
 existing files stay as they were, exit status 130.
+
+stress and report options:
+  --out DIR             where the CSV, JSON and HTML go (default stress-report, report-SCENE)
+  --cases PATTERN       stress: only the cases whose name contains PATTERN
+  --cases-dir DIR       stress: the cases' folder (default scenes/stress)
 
 exit status: 0 success, 1 error, 2 images differ beyond tolerance, 130 interrupted
 )";
@@ -208,6 +233,8 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (verb == "pixel") o.command = Command::Pixel;
     else if (verb == "compare") o.command = Command::Compare;
     else if (verb == "devices") o.command = Command::Devices;
+    else if (verb == "stress") o.command = Command::Stress;
+    else if (verb == "report") o.command = Command::Report;
     else if (verb == "shaders" && args.size() > 1 && args[1] == "check") {
         o.command = Command::ShadersCheck;
         first = 2;
@@ -256,6 +283,8 @@ Options parseOptions(const std::vector<std::string>& args) {
         if (o.cpu && o.validation) throw Error("--validation applies to the GPU; drop --cpu");
         if (o.cpu && (!o.defines.empty() || !o.dumpSpirvDirectory.empty()))
             throw Error("-D and --dump-spirv apply to the GPU shader; drop --cpu");
+        if (o.cpu && o.precisionGiven)
+            throw Error("--precision applies to the GPU; --cpu always renders in double");
     } else if (o.command == Command::Pixel) {
         if (positional.size() != 3)
             throw Error("pixel: expected a scene file and a pixel, e.g. `vkray pixel scene.sdl 320 240`");
@@ -266,6 +295,10 @@ Options parseOptions(const std::vector<std::string>& args) {
             throw Error("pixel: (" + positional[1] + ", " + positional[2] + ") is outside the " +
                         std::to_string(o.width) + "x" + std::to_string(o.height) +
                         " image; pass --size or a smaller X Y");
+    } else if (o.command == Command::Report) {
+        if (positional.size() != 1)
+            throw Error("report: expected one scene file, e.g. `vkray report scenes/default.sdl`");
+        o.scenePath = positional[0];
     } else if (o.command == Command::Compare) {
         if (positional.size() != 2) throw Error("compare: expected two image files A B");
         o.imageA = positional[0];

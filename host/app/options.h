@@ -3,6 +3,8 @@
 // name the flag, and combinations are checked after parsing.
 #pragma once
 
+#include "numerics/precision.h"
+
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -13,7 +15,7 @@
 
 namespace vkray {
 
-enum class Command { Help, Version, Render, Pixel, Compare, Devices, ShadersCheck };
+enum class Command { Help, Version, Render, Pixel, Compare, Devices, ShadersCheck, Stress, Report };
 
 // The largest image vkray renders: each side at most kMaxRenderSide and at
 // most kMaxRenderPixels in all (a Frame costs 32 bytes a pixel on the host).
@@ -48,6 +50,15 @@ struct Options {
     bool quiet = false;                                        // --quiet: no progress display
 
     bool everyVariant = false;  // shaders check --all
+
+    // render, pixel: --precision naive|robust|fp64 (numerics/precision.h)
+    Precision precision = Precision::Robust;
+    bool precisionGiven = false;
+
+    // stress [--cases PATTERN] [--cases-dir DIR] [--out DIR]; report SCENE [--out DIR]
+    std::string casesPattern;
+    std::string casesDirectory;  // default: scenes/stress here, else beside the binary's folder
+    std::string outDirectory;    // default: stress-report / report-SCENE
 
     // pixel SCENE X Y
     int pixelX = 0, pixelY = 0;

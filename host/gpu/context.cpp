@@ -63,7 +63,7 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& device, int index) {
     info.apiVersion = props.apiVersion;
     info.hasCompute =
         computeQueueFamily(device).has_value() && injectedFault() != Fault::NoCompute;
-    info.shaderFloat64 = device.getFeatures().shaderFloat64;
+    info.shaderFloat64 = device.getFeatures().shaderFloat64 && injectedFault() != Fault::NoFloat64;
     info.maxStorageBufferRange = props.limits.maxStorageBufferRange;
     info.maxUniformBufferRange = props.limits.maxUniformBufferRange;
     info.maxMemoryAllocationSize =
@@ -139,9 +139,10 @@ Fault injectedFault() {
     if (fault == "no-compute") return Fault::NoCompute;
     if (fault == "device-lost") return Fault::DeviceLost;
     if (fault == "out-of-device-memory") return Fault::OutOfDeviceMemory;
+    if (fault == "no-float64") return Fault::NoFloat64;
     throw Error("VKRAY_FAULT='" + fault +
                 "' is not a fault vkray can inject (no-compute, device-lost, "
-                "out-of-device-memory); it is a test hook: unset it");
+                "out-of-device-memory, no-float64); it is a test hook: unset it");
 }
 
 void explainVulkanFailure(const vk::SystemError& failure, const DeviceInfo& device) {
@@ -259,7 +260,10 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
 
     float priority = 1.0f;
     vk::DeviceQueueCreateInfo queueInfo({}, s.queueFamily, 1, &priority);
-    vk::DeviceCreateInfo deviceInfo({}, queueInfo);
+    // Double in shaders (--precision fp64) where the device has it.
+    vk::PhysicalDeviceFeatures enabled;
+    enabled.shaderFloat64 = s.info.shaderFloat64;
+    vk::DeviceCreateInfo deviceInfo({}, queueInfo, {}, {}, &enabled);
     s.device = vk::raii::Device(s.physicalDevice, deviceInfo);
     s.queue = s.device.getQueue(s.queueFamily, 0);
     s.commandPool = vk::raii::CommandPool(

@@ -32,7 +32,7 @@ struct Context::Impl {
 // device lacks a compute queue), `device-lost` (after the first tile),
 // `out-of-device-memory` (at the first buffer allocation). Unset: None. An
 // unknown NAME is an Error.
-enum class Fault { None, NoCompute, DeviceLost, OutOfDeviceMemory };
+enum class Fault { None, NoCompute, DeviceLost, OutOfDeviceMemory, NoFloat64 };
 Fault injectedFault();
 
 // Vulkan's failures that can strike in the middle of a render (device lost,

@@ -78,6 +78,16 @@ GpuObject packObject(const Scene& scene, const SceneObject& object) {
     return g;
 }
 
+// The fp64 variant's copy of M^-1, unrounded.
+GpuDoubleObject packDoubleObject(const SceneObject& object) {
+    GpuDoubleObject g{};
+    const glm::dmat4& inv = object.objectFromWorld;
+    for (int row = 0; row < 3; ++row)
+        g.objectFromWorld[row] = {inv[0][row], inv[1][row], inv[2][row], inv[3][row]};
+    if (gpuKindOf(object.type) == KIND_TAPERED_CYLINDER) g.parameters.x = object.taper;
+    return g;
+}
+
 GpuBvhNode packNode(const BvhNode& node, uint first) {
     return {toVec4(node.bounds.lo, bitsAsFloat(first)), toVec4(node.bounds.hi, bitsAsFloat(node.count))};
 }
@@ -143,6 +153,7 @@ private:
         const uint spans = leafSpans(node, root);
         packed_.csgNodes.push_back({{CSG_LEAF, uint(packed_.objects.size()), 0, 0}});
         packed_.objects.push_back(packObject(scene_, node));
+        packed_.doubleObjects.push_back(packDoubleObject(node));
         return {spans, 1};
     }
 
@@ -198,12 +209,14 @@ void packMeshes(const Scene& scene, GpuScene& packed) {
 GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
     GpuScene packed;
     packed.objects.reserve(scene.objects.size());
+    packed.doubleObjects.reserve(scene.objects.size());
     for (const SceneObject& object : scene.objects) {
         if (!isBoolean(object.type) && gpuKindOf(object.type) == KIND_MESH &&
             (object.mesh < 0 || size_t(object.mesh) >= scene.meshes.size()))
             throw Error(located(object, std::string("'") + shapeKeyword(object.type) +
                                             "' has no geometry loaded"));
         packed.objects.push_back(packObject(scene, object));
+        packed.doubleObjects.push_back(packDoubleObject(object));
     }
     for (const Light& light : scene.lights)
         packed.lights.push_back({toVec4(light.position), toVec4(light.color)});
@@ -260,6 +273,12 @@ FrameParams packFrame(const Scene& scene, const GpuScene& packed, const CameraBa
                 packed.unboundedCount};
     f.sampling = {uint(settings.spp), settings.seed, uint(scene.maxRecursionDepth), 0};
     return f;
+}
+
+GpuDoubleCamera packDoubleCamera(const CameraBasis& camera) {
+    const auto row = [](const glm::dvec3& v, double w) { return dvec4{v.x, v.y, v.z, w}; };
+    return {row(camera.eye, camera.tanHalfFov), row(camera.u, camera.aspect), row(camera.v, 0),
+            row(camera.n, 0)};
 }
 
 }  // namespace vkray::gpu

@@ -15,6 +15,7 @@ namespace vkray::gpu {
 
 struct GpuScene {
     std::vector<GpuObject> objects;  // the scene's objects (ids), then CSG primitives
+    std::vector<GpuDoubleObject> doubleObjects;  // the same in double (fp64 variant)
     std::vector<GpuLight> lights;
     // features.objectBvh: nodes over the bounded objects; objectIndex holds
     // the leaves' object indices, then the unbounded objects'.
@@ -33,6 +34,9 @@ struct GpuScene {
 };
 
 GpuScene packScene(const Scene& scene, const ShaderFeatures& features);
+
+// The camera of FrameParams in double (fp64 variant).
+GpuDoubleCamera packDoubleCamera(const CameraBasis& camera);
 
 FrameParams packFrame(const Scene& scene, const GpuScene& packed, const CameraBasis& camera,
                       const RenderSettings& settings);

@@ -51,7 +51,7 @@ BufferNeed need(const char* what, const std::vector<T>& items, const char* advic
 
 // Every buffer TracePass allocates for this variant, before it allocates any.
 std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures& features,
-                                    size_t tilePixels, size_t debugEntries) {
+                                    bool doubles, size_t tilePixels, size_t debugEntries) {
     const char* fewerObjects = "Use fewer objects";
     const char* smallerMeshes = "Use fewer or smaller meshes";
     std::vector<BufferNeed> needs{
@@ -73,6 +73,7 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     }
     if (features.kinds[KIND_BOOLEAN])
         needs.push_back(need("CSG nodes", packed.csgNodes, "Use fewer or simpler booleans"));
+    if (doubles) needs.push_back(need("double transforms", packed.doubleObjects, fewerObjects));
     return needs;
 }
 
@@ -81,14 +82,16 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
 // waits for it.
 class TracePass {
 public:
+    // doubles: the fp64 variant, which also reads the camera and M^-1 in double.
     TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
-              const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
-              int tile)
+              bool doubles, const Scene& scene, const CameraBasis& camera,
+              const RenderSettings& settings, int tile)
         : c_(c), pipeline_(pipeline) {
         const GpuScene packed = packScene(scene, features);
         const size_t debugEntries = 4 + scene.objects.size() + scene.lights.size();
-        checkBufferNeeds(bufferNeeds(packed, features, size_t(tile) * size_t(tile), debugEntries),
-                         deviceLimits(c.info));
+        checkBufferNeeds(
+            bufferNeeds(packed, features, doubles, size_t(tile) * size_t(tile), debugEntries),
+            deviceLimits(c.info));
         const std::vector<FrameParams> frameParams{packFrame(scene, packed, camera, settings)};
         using Usage = vk::BufferUsageFlagBits;
         // Only the buffers this variant reads (the same list as its bindings).
@@ -117,6 +120,11 @@ public:
         if (features.has(Shading::Pixmaps)) {
             add(BINDING_PIXMAPS, makeBuffer(c, packed.pixmaps, Usage::eStorageBuffer));
             add(BINDING_TEXELS, makeBuffer(c, packed.texels, Usage::eStorageBuffer));
+        }
+        if (doubles) {
+            add(BINDING_DOUBLE_CAMERA, makeBuffer(c, std::vector<GpuDoubleCamera>{packDoubleCamera(camera)},
+                                                  Usage::eStorageBuffer));
+            add(BINDING_DOUBLE_OBJECTS, makeBuffer(c, packed.doubleObjects, Usage::eStorageBuffer));
         }
 
         const std::array<vk::DescriptorPoolSize, 2> poolSizes{{
@@ -202,14 +210,24 @@ glm::dvec3 toDvec3(const vec4& v) { return {v.x, v.y, v.z}; }
 
 }  // namespace
 
+void requirePrecisionSupported(Precision precision, const DeviceInfo& device) {
+    if (precision == Precision::Fp64 && !device.shaderFloat64)
+        throw Error("--precision fp64: the Vulkan device " + std::to_string(device.index) + " (" +
+                    device.name + ") has no shaderFloat64 (double in shaders); use --precision "
+                    "robust, another --device (`vkray devices` lists them), or --cpu for the "
+                    "double CPU reference");
+}
+
 GpuTracer::GpuTracer(Context& context, GpuRenderOptions options)
     : context_(context), options_(std::move(options)) {}
 
 GpuTracer::~GpuTracer() = default;
 
 const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRenderStats& stats) {
-    const ShaderSource source{options_.shaderDirectory, "trace.comp",
-                              definesFor(features, options_.userDefines)};
+    requirePrecisionSupported(options_.precision, context_.device());
+    Defines defines = precisionDefines(options_.precision);
+    defines.insert(defines.end(), options_.userDefines.begin(), options_.userDefines.end());
+    const ShaderSource source{options_.shaderDirectory, "trace.comp", definesFor(features, defines)};
     stats.shader = loadOrCompile(source);
     stats.variant = describe(features);
     if (pipeline_ && pipeline_->key == stats.shader.key) return *pipeline_;
@@ -232,6 +250,8 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     if (features.kinds[KIND_BOOLEAN]) bind(BINDING_CSG_NODES, storage);
     if (features.has(Shading::Pixmaps))
         for (uint binding : {BINDING_PIXMAPS, BINDING_TEXELS}) bind(binding, storage);
+    if (options_.precision == Precision::Fp64)
+        for (uint binding : {BINDING_DOUBLE_CAMERA, BINDING_DOUBLE_OBJECTS}) bind(binding, storage);
     p->setLayout = vk::raii::DescriptorSetLayout(c.device, {{}, bindings});
     const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0, sizeof(TileParams));
     p->layout = vk::raii::PipelineLayout(c.device, {{}, *p->setLayout, pushRange});
@@ -244,9 +264,12 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     return *pipeline_;
 }
 
-Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
+Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera,
                         const RenderSettings& settings, GpuRenderStats* stats,
                         const RenderProgress& progress, TileSchedule* schedule) try {
+    const GpuInputs inputs = prepareGpuInputs(options_.precision, original, originalCamera);
+    const Scene& scene = inputs.scene;
+    const CameraBasis& camera = inputs.camera;
     if (settings.width < 1 || settings.height < 1 || settings.block < 1)
         throw Error("render: width, height and block must be at least 1");
     GpuRenderStats local;
@@ -265,7 +288,8 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
                               options_.tileSize / int(std::ceil(std::sqrt(double(settings.spp)))));
     const int tile = fitTileSide(std::max(block, side / block * block), block, sizeof(GpuPixel),
                                  WORKGROUP_X, WORKGROUP_Y, deviceLimits(context_.device()));
-    TracePass pass(context_.impl(), pipeline, features, scene, camera, settings, tile);
+    TracePass pass(context_.impl(), pipeline, features, options_.precision == Precision::Fp64, scene,
+                   camera, settings, tile);
     st.setupSeconds = secondsSince(setupStart) - st.shader.seconds;
 
     Frame frame(settings.width, settings.height);
@@ -309,9 +333,12 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
     explainVulkanFailure(failure, context_.device());
 }
 
-PixelTrace GpuTracer::tracePixel(const Scene& scene, const CameraBasis& camera,
+PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& originalCamera,
                                  const RenderSettings& settings, int x, int y,
                                  GpuRenderStats* stats) try {
+    const GpuInputs inputs = prepareGpuInputs(options_.precision, original, originalCamera);
+    const Scene& scene = inputs.scene;
+    const CameraBasis& camera = inputs.camera;
     if (x < 0 || y < 0 || x >= settings.width || y >= settings.height)
         throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                     ") is outside the " + std::to_string(settings.width) + "x" +
@@ -325,7 +352,8 @@ PixelTrace GpuTracer::tracePixel(const Scene& scene, const CameraBasis& camera,
     features.shading[size_t(Shading::Antialias)] = false;
     features.debugPixel = true;
     const Pipeline& pipeline = pipelineFor(features, st);
-    TracePass pass(context_.impl(), pipeline, features, scene, camera, oneSample, 1);
+    TracePass pass(context_.impl(), pipeline, features, options_.precision == Precision::Fp64, scene,
+                   camera, oneSample, 1);
     // A one-pixel tile at the corner of the pixel's block: its one ray is the block's.
     const int block = std::max(settings.block, 1);
     pass.dispatchTile(x - x % block, y - y % block, 1, 1, block);
@@ -335,7 +363,9 @@ PixelTrace GpuTracer::tracePixel(const Scene& scene, const CameraBasis& camera,
     PixelTrace trace;
     trace.x = x;
     trace.y = y;
-    trace.rayOrigin = toDvec3(header.rayOrigin);
+    // Back from the mode's camera-relative world (numerics/precision.h) to the scene's.
+    const glm::dvec3 shift = originalCamera.eye - camera.eye;
+    trace.rayOrigin = toDvec3(header.rayOrigin) + shift;
     trace.rayDirection = toDvec3(header.rayDirection);
     for (uint i = 0; i < header.counts.x; ++i) {
         const float t = entries[i].first.w;
@@ -345,7 +375,7 @@ PixelTrace GpuTracer::tracePixel(const Scene& scene, const CameraBasis& camera,
     std::memcpy(&trace.hitObject, &header.normal.w, sizeof(std::int32_t));
     if (trace.hitObject >= 0) {
         trace.t = header.hitPoint.w;
-        trace.point = toDvec3(header.hitPoint);
+        trace.point = toDvec3(header.hitPoint) + shift;
         trace.normal = toDvec3(header.normal);
         trace.emissive = toDvec3(header.emissive);
         trace.ambient = toDvec3(header.ambient);

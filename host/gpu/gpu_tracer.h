@@ -8,6 +8,7 @@
 #include "gpu/spirv_cache.h"
 #include "image/frame.h"
 #include "image/pixel_trace.h"
+#include "numerics/precision.h"
 #include "scene/camera.h"
 #include "scene/render_progress.h"
 #include "scene/scene.h"
@@ -26,6 +27,8 @@ struct GpuRenderOptions {
     bool allFeatures = false;  // compile every shape in, whatever the scene uses
     int tileSize = 256;        // pixels per tile side (rounded to a multiple of the block)
     Defines userDefines;       // -D NAME=VALUE, after the variant's own
+    // numerics/precision.h: the mode's defines and host-side scene preparation.
+    Precision precision = Precision::Robust;
 };
 
 struct GpuRenderStats {
@@ -38,6 +41,10 @@ struct GpuRenderStats {
 };
 
 struct Pipeline;
+
+// Throws Error, naming the device, where it cannot run the precision mode
+// (fp64 without shaderFloat64).
+void requirePrecisionSupported(Precision precision, const DeviceInfo& device);
 
 class GpuTracer {
 public:

@@ -39,6 +39,13 @@ static_assert(offsetof(FrameParams, counts) == 112);
 static_assert(offsetof(FrameParams, sampling) == 128);
 static_assert(sizeof(FrameParams) == 144);
 
+static_assert(sizeof(dvec4) == 32 && alignof(dvec4) == 32);
+static_assert(offsetof(GpuDoubleCamera, cameraU) == 32);
+static_assert(offsetof(GpuDoubleCamera, cameraN) == 96);
+static_assert(sizeof(GpuDoubleCamera) == 128);
+static_assert(offsetof(GpuDoubleObject, parameters) == 96);
+static_assert(sizeof(GpuDoubleObject) == 128);
+
 static_assert(sizeof(TileParams) == 16);
 
 static_assert(offsetof(GpuPixel, color) == 0);

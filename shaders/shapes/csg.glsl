@@ -7,8 +7,8 @@ layout(std430, set = 0, binding = BINDING_CSG_NODES) readonly buffer CsgBlock { 
 
 // One end of a span: where the ray crosses a primitive's surface.
 struct SpanEnd {
-    float t;
-    vec3 normal;     // generic outward normal of `primitive`, negated when flipped
+    real t;
+    rvec3 normal;     // generic outward normal of `primitive`, negated when flipped
     uint primitive;  // GpuObject index
 };
 
@@ -17,35 +17,35 @@ struct SpanList {
     SpanEnd ends[2 * CSG_MAX_SPANS];  // in, out, in, out, ... ascending
 };
 
-const float CSG_INFINITY = 1.0 / 0.0;
+const real CSG_INFINITY = 1.0 / 0.0;
 
-void addSpan(inout SpanList list, float t0, vec3 n0, float t1, vec3 n1, uint primitive) {
+void addSpan(inout SpanList list, real t0, rvec3 n0, real t1, rvec3 n1, uint primitive) {
     list.ends[2u * list.count] = SpanEnd(t0, n0, primitive);
     list.ends[2u * list.count + 1u] = SpanEnd(t1, n1, primitive);
     list.count++;
 }
 
 // The generic plane as a solid: the half-space z <= 0.
-void planeSpans(vec3 o, vec3 d, uint primitive, inout SpanList list) {
-    vec3 up = vec3(0.0, 0.0, 1.0);
+void planeSpans(rvec3 o, rvec3 d, uint primitive, inout SpanList list) {
+    rvec3 up = rvec3(0.0, 0.0, 1.0);
     if (d.z == 0.0) {
         if (o.z <= 0.0) addSpan(list, -CSG_INFINITY, -up, CSG_INFINITY, up, primitive);
         return;
     }
-    float t = -o.z / d.z;
+    real t = -o.z / d.z;
     if (d.z > 0.0) addSpan(list, -CSG_INFINITY, -up, t, up, primitive);  // leaves upward
     else addSpan(list, t, up, CSG_INFINITY, up, primitive);
 }
 
 // The inside-spans of primitive `index` along the whole line origin + t direction.
-SpanList primitiveSpans(uint index, vec3 origin, vec3 direction) {
+SpanList primitiveSpans(uint index, rvec3 origin, rvec3 direction) {
     SpanList list;
     list.count = 0u;
-    vec3 o, d;
+    rvec3 o, d;
     toObjectSpace(index, origin, direction, o, d);
     GpuObject object = objects[index];
-    float t0, t1;
-    vec3 n0, n1;
+    real t0, t1;
+    rvec3 n0, n1;
     switch (object.shape.x) {
 #if VKRAY_SHAPE_SPHERE
     case KIND_SPHERE: if (sphereSpan(o, d, t0, n0, t1, n1)) addSpan(list, t0, n0, t1, n1, index); break;
@@ -58,14 +58,14 @@ SpanList primitiveSpans(uint index, vec3 origin, vec3 direction) {
 #endif
 #if VKRAY_SHAPE_TAPERED_CYLINDER
     case KIND_TAPERED_CYLINDER:
-        if (taperedCylinderSpan(o, d, uintBitsToFloat(object.shape.y), t0, n0, t1, n1))
+        if (taperedCylinderSpan(o, d, taperOf(index), t0, n0, t1, n1))
             addSpan(list, t0, n0, t1, n1, index);
         break;
 #endif
 #if VKRAY_SHAPE_TORUS
     case KIND_TORUS: {
-        float ts[4];
-        vec3 ns[4];
+        real ts[4];
+        rvec3 ns[4];
         int n = torusRoots(o, d, ts, ns);
         for (int i = 0; i + 1 < n; i += 2) addSpan(list, ts[i], ns[i], ts[i + 1], ns[i + 1], index);
         break;
@@ -121,8 +121,8 @@ SpanList combine(uint op, SpanList a, SpanList b) {
 // The nearest surface in (tMin, tMax) of the CSG tree whose post-order nodes
 // start at csgNodes[first] (that node's z holds the tree's node count),
 // evaluated with a stack of span lists.
-bool intersectCsg(uint first, vec3 origin, vec3 direction, float tMin, float tMax, out float t,
-                  out vec3 genericNormal, out uint primitive) {
+bool intersectCsg(uint first, rvec3 origin, rvec3 direction, real tMin, real tMax, out real t,
+                  out rvec3 genericNormal, out uint primitive) {
     SpanList stack[CSG_MAX_STACK];
     uint top = 0u;
     uint nodeCount = csgNodes[first].node.z;

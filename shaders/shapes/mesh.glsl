@@ -8,58 +8,58 @@ layout(std430, set = 0, binding = BINDING_TRIANGLES) readonly buffer TriangleBlo
 
 // The ray in the frame where it runs along +z (per ray, shared by all triangles).
 struct ShearedRay {
-    vec3 o;
+    rvec3 o;
     ivec3 axes;   // kx, ky, kz
-    vec3 shear;   // Sx, Sy, Sz
+    rvec3 shear;   // Sx, Sy, Sz
 };
 
-ShearedRay shearRay(vec3 o, vec3 d) {
+ShearedRay shearRay(rvec3 o, rvec3 d) {
     ShearedRay r;
     r.o = o;
-    vec3 a = abs(d);
+    rvec3 a = abs(d);
     int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
     int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
     if (d[kz] < 0.0) { int s = kx; kx = ky; ky = s; }  // keep the winding
     r.axes = ivec3(kx, ky, kz);
-    r.shear = vec3(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
+    r.shear = rvec3(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
     return r;
 }
 
 // The hit of the ray with triangle p0 p1 p2 in (tMin, tMax): t and barycentrics.
-bool intersectTriangle(ShearedRay r, vec3 p0, vec3 p1, vec3 p2, float tMin, float tMax,
-                       out float t, out vec3 barycentric) {
-    vec3 a = p0 - r.o, b = p1 - r.o, c = p2 - r.o;
+bool intersectTriangle(ShearedRay r, rvec3 p0, rvec3 p1, rvec3 p2, real tMin, real tMax,
+                       out real t, out rvec3 barycentric) {
+    rvec3 a = p0 - r.o, b = p1 - r.o, c = p2 - r.o;
     ivec3 k = r.axes;
-    precise float ax = a[k.x] - r.shear.x * a[k.z], ay = a[k.y] - r.shear.y * a[k.z];
-    precise float bx = b[k.x] - r.shear.x * b[k.z], by = b[k.y] - r.shear.y * b[k.z];
-    precise float cx = c[k.x] - r.shear.x * c[k.z], cy = c[k.y] - r.shear.y * c[k.z];
-    precise float u = cx * by - cy * bx;
-    precise float v = ax * cy - ay * cx;
-    precise float w = bx * ay - by * ax;
+    precise real ax = a[k.x] - r.shear.x * a[k.z], ay = a[k.y] - r.shear.y * a[k.z];
+    precise real bx = b[k.x] - r.shear.x * b[k.z], by = b[k.y] - r.shear.y * b[k.z];
+    precise real cx = c[k.x] - r.shear.x * c[k.z], cy = c[k.y] - r.shear.y * c[k.z];
+    precise real u = cx * by - cy * bx;
+    precise real v = ax * cy - ay * cx;
+    precise real w = bx * ay - by * ax;
     if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
-    float det = u + v + w;
+    real det = u + v + w;
     if (det == 0.0) return false;
-    float scaledT = r.shear.z * (u * a[k.z] + v * b[k.z] + w * c[k.z]);
+    real scaledT = r.shear.z * (u * a[k.z] + v * b[k.z] + w * c[k.z]);
     t = scaledT / det;
     if (!(t > tMin && t < tMax)) return false;
-    barycentric = vec3(u, v, w) / det;
+    barycentric = rvec3(u, v, w) / det;
     return true;
 }
 
 // The nearest triangle of mesh `index` in (tMin, tMax), with the interpolated
 // normal and the triangle's own (geometric) one, unnormalised.
-bool intersectMesh(uint index, vec3 o, vec3 d, float tMin, float tMax, out float t, out vec3 normal,
-                   out vec3 geometricNormal) {
+bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real t, out rvec3 normal,
+                   out rvec3 geometricNormal) {
     GpuMesh mesh = meshes[index];
     ShearedRay sheared = shearRay(o, d);
-    vec3 invD = 1.0 / d;
+    rvec3 invD = 1.0 / d;
     bool found = false;
     t = tMax;
     uint stack[BVH_STACK_SIZE];
-    float stackEnter[BVH_STACK_SIZE];
+    real stackEnter[BVH_STACK_SIZE];
     uint top = 0u;
     uint node = 0u;
-    float enter;
+    real enter;
     GpuBvhNode root = meshNodes[mesh.range.x];
     bool walking = hitsBox(root.lo.xyz, root.hi.xyz, o, invD, tMin, t, enter);
     while (walking) {
@@ -67,7 +67,7 @@ bool intersectMesh(uint index, vec3 o, vec3 d, float tMin, float tMax, out float
         uint count = floatBitsToUint(n.hi.w), first = floatBitsToUint(n.lo.w);
         if (count == 0u) {
             uint nearIndex, farIndex;
-            float farEnter;
+            real farEnter;
             int hits = orderChildren(meshNodes[mesh.range.x + node + 1u], node + 1u,
                                      meshNodes[mesh.range.x + first], first, o, invD, tMin, t,
                                      nearIndex, farIndex, farEnter);
@@ -82,8 +82,8 @@ bool intersectMesh(uint index, vec3 o, vec3 d, float tMin, float tMax, out float
         } else {
             for (uint i = first; i < first + count; ++i) {
                 GpuTriangle tri = triangles[mesh.range.y + i];
-                float tHit;
-                vec3 bary;
+                real tHit;
+                rvec3 bary;
                 if (intersectTriangle(sheared, tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, tMin, t, tHit, bary)) {
                     t = tHit;
                     normal = bary.x * tri.n0.xyz + bary.y * tri.n1.xyz + bary.z * tri.n2.xyz;
@@ -104,11 +104,11 @@ bool intersectMesh(uint index, vec3 o, vec3 d, float tMin, float tMax, out float
 
 // A convex closed mesh as a solid (CSG): the first and last crossing of the
 // whole line, with their normals.
-bool meshSpan(uint index, vec3 o, vec3 d, out float t0, out vec3 n0, out float t1, out vec3 n1) {
+bool meshSpan(uint index, rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real t1, out rvec3 n1) {
     GpuMesh mesh = meshes[index];
     ShearedRay sheared = shearRay(o, d);
-    vec3 invD = 1.0 / d;
-    const float INF = 1.0 / 0.0;
+    rvec3 invD = 1.0 / d;
+    const real INF = 1.0 / 0.0;
     uint stack[BVH_STACK_SIZE];
     uint top = 0u;
     uint node = 0u;
@@ -116,7 +116,7 @@ bool meshSpan(uint index, vec3 o, vec3 d, out float t0, out vec3 n0, out float t
     t1 = -INF;
     while (true) {
         GpuBvhNode n = meshNodes[mesh.range.x + node];
-        float enter;
+        real enter;
         if (hitsBox(n.lo.xyz, n.hi.xyz, o, invD, -INF, INF, enter)) {
             uint count = floatBitsToUint(n.hi.w), first = floatBitsToUint(n.lo.w);
             if (count == 0u) {
@@ -126,11 +126,11 @@ bool meshSpan(uint index, vec3 o, vec3 d, out float t0, out vec3 n0, out float t
             }
             for (uint i = first; i < first + count; ++i) {
                 GpuTriangle tri = triangles[mesh.range.y + i];
-                float t;
-                vec3 bary;
+                real t;
+                rvec3 bary;
                 if (!intersectTriangle(sheared, tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, -INF, INF, t, bary))
                     continue;
-                vec3 normal = bary.x * tri.n0.xyz + bary.y * tri.n1.xyz + bary.z * tri.n2.xyz;
+                rvec3 normal = bary.x * tri.n0.xyz + bary.y * tri.n1.xyz + bary.z * tri.n2.xyz;
                 if (t < t0) { t0 = t; n0 = normal; }
                 if (t > t1) { t1 = t; n1 = normal; }
             }

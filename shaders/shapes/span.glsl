@@ -1,8 +1,8 @@
 // Helpers every variant includes. The solid shapes report the span of t where the ray is inside them (entry
 // t0 and exit t1 with their outward normals): the closest hit is the first
 // end after tMin, and CSG combines the spans.
-bool firstHitOfSpan(float t0, vec3 n0, float t1, vec3 n1, float tMin, float tMax,
-                    out float t, out vec3 normal) {
+bool firstHitOfSpan(real t0, rvec3 n0, real t1, rvec3 n1, real tMin, real tMax,
+                    out real t, out rvec3 normal) {
     if (t0 > tMin) {
         t = t0;
         normal = n0;
@@ -18,17 +18,17 @@ bool firstHitOfSpan(float t0, vec3 n0, float t1, vec3 n1, float tMin, float tMax
 // (pbrt-v4) so rounding never culls a box the ray touches. An axis-parallel
 // ray on a slab plane gives 0 * inf = NaN, and GLSL's min and max are
 // undefined on NaN, so NaN is replaced first: the ray lies in that slab.
-bool hitsBox(vec3 lo, vec3 hi, vec3 o, vec3 invD, float tMin, float tMax, out float enter) {
-    vec3 t0 = (lo - o) * invD;
-    vec3 t1 = (hi - o) * invD;
-    const float INF = 1.0 / 0.0;
+bool hitsBox(rvec3 lo, rvec3 hi, rvec3 o, rvec3 invD, real tMin, real tMax, out real enter) {
+    rvec3 t0 = (lo - o) * invD;
+    rvec3 t1 = (hi - o) * invD;
+    const real INF = 1.0 / 0.0;
     for (int i = 0; i < 3; ++i) {
         if (isnan(t0[i])) t0[i] = -INF;
         if (isnan(t1[i])) t1[i] = INF;
     }
-    vec3 tNear = min(t0, t1), tFar = max(t0, t1);
+    rvec3 tNear = min(t0, t1), tFar = max(t0, t1);
     enter = max(tMin, max(tNear.x, max(tNear.y, tNear.z)));
-    float exit = min(tMax, min(tFar.x, min(tFar.y, tFar.z)));
+    real exit = min(tMax, min(tFar.x, min(tFar.y, tFar.z)));
     return enter <= exit + abs(exit) * 3.6e-7;
 }
 
@@ -37,10 +37,10 @@ bool hitsBox(vec3 lo, vec3 hi, vec3 o, vec3 invD, float tMin, float tMax, out fl
 // enters within [tMin, tMax], the nearer first. Returns how many (0, 1, 2);
 // with 2 the far one is to be kept on the stack with its entry t. (Scalars
 // only: passing the walk's stack in and out of a function would copy it.)
-int orderChildren(GpuBvhNode a, uint indexA, GpuBvhNode b, uint indexB, vec3 o, vec3 invD,
-                  float tMin, float tMax, out uint nearIndex, out uint farIndex,
-                  out float farEnter) {
-    float enterA, enterB;
+int orderChildren(GpuBvhNode a, uint indexA, GpuBvhNode b, uint indexB, rvec3 o, rvec3 invD,
+                  real tMin, real tMax, out uint nearIndex, out uint farIndex,
+                  out real farEnter) {
+    real enterA, enterB;
     bool hitA = hitsBox(a.lo.xyz, a.hi.xyz, o, invD, tMin, tMax, enterA);
     bool hitB = hitsBox(b.lo.xyz, b.hi.xyz, o, invD, tMin, tMax, enterB);
     bool aFirst = hitA && (!hitB || enterA <= enterB);

@@ -11,27 +11,27 @@
 // kept inside its bracket (Yuksel, HPG 2022); polish with one Newton step on
 // F itself. Tangent double roots (no sign change) are missed: a grazing ray.
 
-float polynomialAt(float c[5], int degree, float x) {
-    float f = c[degree];
+real polynomialAt(real c[5], int degree, real x) {
+    real f = c[degree];
     for (int i = degree - 1; i >= 0; --i) f = f * x + c[i];
     return f;
 }
 
 // A root of the polynomial in [a, b], where its values at a and b differ in sign.
-float bracketedRoot(float c[5], int degree, float a, float b) {
-    float fa = polynomialAt(c, degree, a);
-    float x = 0.5 * (a + b);
+real bracketedRoot(real c[5], int degree, real a, real b) {
+    real fa = polynomialAt(c, degree, a);
+    real x = 0.5 * (a + b);
     for (int i = 0; i < 40; ++i) {
-        float f = c[degree], df = 0.0;
+        real f = c[degree], df = 0.0;
         for (int k = degree - 1; k >= 0; --k) {
             df = df * x + f;
             f = f * x + c[k];
         }
         if (f == 0.0) return x;
         if ((f > 0.0) == (fa > 0.0)) { a = x; fa = f; } else { b = x; }
-        float next = x - f / df;
+        real next = x - f / df;
         if (!(next > a && next < b)) next = 0.5 * (a + b);  // Newton left the bracket: bisect
-        if (abs(next - x) <= 1e-7 * max(1.0, abs(next))) return next;
+        if (abs(next - x) <= ROOT_TOLERANCE * max(1.0, abs(next))) return next;
         x = next;
     }
     return x;
@@ -39,31 +39,31 @@ float bracketedRoot(float c[5], int degree, float a, float b) {
 
 // The real roots in [lo, hi] of the polynomial of `degree` (2, 3 or 4) with
 // sign changes, ascending; returns how many. Degree 2 in closed form.
-int rootsQuadratic(float c0, float c1, float c2, float lo, float hi, out float roots[4]) {
+int rootsQuadratic(real c0, real c1, real c2, real lo, real hi, out real roots[4]) {
     int n = 0;
     if (c2 == 0.0) {
-        if (c1 != 0.0) { float x = -c0 / c1; if (x >= lo && x <= hi) roots[n++] = x; }
+        if (c1 != 0.0) { real x = -c0 / c1; if (x >= lo && x <= hi) roots[n++] = x; }
         return n;
     }
-    float disc = c1 * c1 - 4.0 * c2 * c0;
+    real disc = c1 * c1 - 4.0 * c2 * c0;
     if (disc < 0.0) return 0;
-    float q = -0.5 * (c1 + (c1 >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
-    float x0 = q / c2, x1 = q != 0.0 ? c0 / q : x0;
-    if (x0 > x1) { float s = x0; x0 = x1; x1 = s; }
+    real q = -0.5 * (c1 + (c1 >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
+    real x0 = q / c2, x1 = q != 0.0 ? c0 / q : x0;
+    if (x0 > x1) { real s = x0; x0 = x1; x1 = s; }
     if (x0 >= lo && x0 <= hi) roots[n++] = x0;
     if (x1 >= lo && x1 <= hi) roots[n++] = x1;
     return n;
 }
 
 // Roots of a polynomial of `degree` on [lo, hi] between the given extrema.
-int rootsBetween(float c[5], int degree, float lo, float hi, float extrema[4], int extremaCount,
-                 out float roots[4]) {
+int rootsBetween(real c[5], int degree, real lo, real hi, real extrema[4], int extremaCount,
+                 out real roots[4]) {
     int n = 0;
-    float a = lo;
-    float fa = polynomialAt(c, degree, a);
+    real a = lo;
+    real fa = polynomialAt(c, degree, a);
     for (int i = 0; i <= extremaCount; ++i) {
-        float b = i < extremaCount ? extrema[i] : hi;
-        float fb = polynomialAt(c, degree, b);
+        real b = i < extremaCount ? extrema[i] : hi;
+        real fb = polynomialAt(c, degree, b);
         if (fa == 0.0 && n < 4) roots[n++] = a;
         else if ((fa < 0.0) != (fb < 0.0) && fb != 0.0 && n < 4) roots[n++] = bracketedRoot(c, degree, a, b);
         a = b;
@@ -73,59 +73,85 @@ int rootsBetween(float c[5], int degree, float lo, float hi, float extrema[4], i
     return n;
 }
 
-int quarticRoots(float c[5], float lo, float hi, out float roots[4]) {
+int quarticRoots(real c[5], real lo, real hi, out real roots[4]) {
     // Derivative chain: quartic -> cubic -> quadratic (closed form).
-    float cubic[5] = float[5](c[1], 2.0 * c[2], 3.0 * c[3], 4.0 * c[4], 0.0);
+    real cubic[5] = real[5](c[1], 2.0 * c[2], 3.0 * c[3], 4.0 * c[4], 0.0);
     // The cubic's extrema are the roots of its derivative, a quadratic.
-    float quadraticExtrema[4];
+    real quadraticExtrema[4];
     int e2 = rootsQuadratic(cubic[1], 2.0 * cubic[2], 3.0 * cubic[3], lo, hi, quadraticExtrema);
-    float cubicRoots[4];
+    real cubicRoots[4];
     int e3 = rootsBetween(cubic, 3, lo, hi, quadraticExtrema, e2, cubicRoots);
     return rootsBetween(c, 4, lo, hi, cubicRoots, e3, roots);
 }
 
 // Every crossing of the torus along the whole line o + d t, ascending in t,
 // with the outward normal at each; returns how many (0, 2 or 4 in general).
-int torusRoots(vec3 o, vec3 d, out float ts[4], out vec3 normals[4]) {
-    const float R = TORUS_MAJOR_RADIUS, r = TORUS_TUBE_RADIUS;
-    float dLength = sqrt(dot(d, d));
-    vec3 u = d / dLength;
+#if VKRAY_PRECISION_NAIVE
+// Naive (textbook): the quartic's coefficients straight from the ray's own
+// origin and direction. They grow like |o|^4 and cancel: from 100 units away
+// about half the hits flip (NUMERICS.md section 6). Same root finder, no
+// origin shift, no unit direction, no polish.
+int torusRoots(rvec3 o, rvec3 d, out real ts[4], out rvec3 normals[4]) {
+    const real R = TORUS_MAJOR_RADIUS, r = TORUS_TUBE_RADIUS;
+    real boundRadius = 1.01 * (R + r);
+    real G = dot(d, d), H = dot(o, d), K = dot(o, o) + R * R - r * r;
+    real disc = H * H - G * (dot(o, o) - boundRadius * boundRadius);
+    if (disc <= 0.0) return 0;
+    real lo = (-H - sqrt(disc)) / G, hi = (-H + sqrt(disc)) / G;
+    real a2 = d.x * d.x + d.y * d.y, a1 = o.x * d.x + o.y * d.y, a0 = o.x * o.x + o.y * o.y;
+    real c[5] = real[5](K * K - 4.0 * R * R * a0, 4.0 * H * K - 8.0 * R * R * a1,
+                          4.0 * H * H + 2.0 * G * K - 4.0 * R * R * a2, 4.0 * G * H, G * G);
+    int n = quarticRoots(c, lo, hi, ts);
+    for (int i = 0; i < n; ++i) {
+        rvec3 p = o + ts[i] * d;
+        real k = dot(p, p) + R * R - r * r;
+        normals[i] = 4.0 * k * p - 8.0 * R * R * rvec3(p.xy, 0.0);
+    }
+    return n;
+}
+#else
+// Robust: origin shifted to the bounding sphere, unit direction, polish on F.
+int torusRoots(rvec3 o, rvec3 d, out real ts[4], out rvec3 normals[4]) {
+    const real R = TORUS_MAJOR_RADIUS, r = TORUS_TUBE_RADIUS;
+    real dLength = sqrt(dot(d, d));
+    rvec3 u = d / dLength;
     // The line through the bounding sphere (a little larger, so that F > 0 at
     // both ends): t_e and t_x in units along u.
-    float boundRadius = 1.01 * (R + r);
-    float b = dot(o, u);
-    vec3 fPerp = o - b * u;
-    float disc = boundRadius * boundRadius - dot(fPerp, fPerp);
+    real boundRadius = 1.01 * (R + r);
+    real b = dot(o, u);
+    rvec3 fPerp = o - b * u;
+    real disc = boundRadius * boundRadius - dot(fPerp, fPerp);
     if (disc <= 0.0) return 0;
-    float halfChord = sqrt(disc);
-    float tEnter = -b - halfChord;
-    vec3 e = o + tEnter * u;  // the shifted origin: |e| = boundRadius
-    float H = dot(e, u);
-    float K = dot(e, e) + R * R - r * r;
-    float a2 = u.x * u.x + u.y * u.y, a1 = e.x * u.x + e.y * u.y, a0 = e.x * e.x + e.y * e.y;
-    float c[5] = float[5](K * K - 4.0 * R * R * a0, 4.0 * H * K - 8.0 * R * R * a1,
+    real halfChord = sqrt(disc);
+    real tEnter = -b - halfChord;
+    rvec3 e = o + tEnter * u;  // the shifted origin: |e| = boundRadius
+    real H = dot(e, u);
+    real K = dot(e, e) + R * R - r * r;
+    real a2 = u.x * u.x + u.y * u.y, a1 = e.x * u.x + e.y * u.y, a0 = e.x * e.x + e.y * e.y;
+    real c[5] = real[5](K * K - 4.0 * R * R * a0, 4.0 * H * K - 8.0 * R * R * a1,
                           4.0 * H * H + 2.0 * K - 4.0 * R * R * a2, 4.0 * H, 1.0);
-    float s[4];
+    real s[4];
     int n = quarticRoots(c, 0.0, 2.0 * halfChord, s);
     for (int i = 0; i < n; ++i) {
         // One Newton step on F at the point itself, then back to the caller's t.
-        vec3 p = e + s[i] * u;
-        float k = dot(p, p) + R * R - r * r;
-        float F = k * k - 4.0 * R * R * dot(p.xy, p.xy);
-        vec3 gradient = 4.0 * k * p - 8.0 * R * R * vec3(p.xy, 0.0);
-        float slope = dot(gradient, u);
+        rvec3 p = e + s[i] * u;
+        real k = dot(p, p) + R * R - r * r;
+        real F = k * k - 4.0 * R * R * dot(p.xy, p.xy);
+        rvec3 gradient = 4.0 * k * p - 8.0 * R * R * rvec3(p.xy, 0.0);
+        real slope = dot(gradient, u);
         if (slope != 0.0 && abs(F / slope) < 1e-2) s[i] -= F / slope;
         p = e + s[i] * u;
         k = dot(p, p) + R * R - r * r;
-        normals[i] = 4.0 * k * p - 8.0 * R * R * vec3(p.xy, 0.0);
+        normals[i] = 4.0 * k * p - 8.0 * R * R * rvec3(p.xy, 0.0);
         ts[i] = (tEnter + s[i]) / dLength;
     }
     return n;
 }
+#endif
 
-bool intersectTorus(vec3 o, vec3 d, float tMin, float tMax, out float t, out vec3 normal) {
-    float ts[4];
-    vec3 normals[4];
+bool intersectTorus(rvec3 o, rvec3 d, real tMin, real tMax, out real t, out rvec3 normal) {
+    real ts[4];
+    rvec3 normals[4];
     int n = torusRoots(o, d, ts, normals);
     for (int i = 0; i < n; ++i) {
         if (ts[i] > tMin && ts[i] < tMax) {

@@ -1,0 +1,126 @@
+#include "app/stress_command.h"
+
+#include "app/commands.h"
+#include "gpu/context.h"
+#include "numerics/report_sweep.h"
+#include "numerics/stress_report.h"
+#include "numerics/stress_suite.h"
+#include "scene/error.h"
+#include "scene/scene_geometry.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <ostream>
+
+namespace vkray {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// scenes/stress in the current folder (a checkout), else beside the folder
+// of the binary (build/vkray -> scenes/stress).
+std::string casesDirectory(const Options& o) {
+    if (!o.casesDirectory.empty()) return o.casesDirectory;
+    if (fs::is_directory("scenes/stress")) return "scenes/stress";
+    std::error_code ec;
+    const fs::path beside = fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path() / "scenes/stress";
+    if (!ec && fs::is_directory(beside)) return beside.string();
+    throw Error("stress: cannot find scenes/stress here or beside the binary; pass --cases-dir DIR");
+}
+
+std::string deviceText(const gpu::Context& context) {
+    const gpu::DeviceInfo& d = context.device();
+    return d.name + " (" + d.driverName + ")";
+}
+
+std::string commandLine(const Options& o, const std::string& verb) {
+    std::string text = "vkray " + verb;
+    if (!o.scenePath.empty()) text += " " + o.scenePath;
+    text += " --size " + std::to_string(o.width) + "x" + std::to_string(o.height);
+    if (!o.casesPattern.empty()) text += " --cases " + o.casesPattern;
+    return text;
+}
+
+// The output folder exists and is writable before any work starts.
+void prepareOutDirectory(const std::string& directory) {
+    std::error_code ec;
+    fs::create_directories(directory, ec);
+    if (ec || !fs::is_directory(directory))
+        throw Error("--out " + directory + ": cannot create the folder" +
+                    (ec ? " (" + ec.message() + ")" : std::string()));
+}
+
+}  // namespace
+
+int runStress(const Options& o, std::ostream& out, std::ostream& err) {
+    const std::vector<numerics::StressCase> cases = numerics::findStressCases(casesDirectory(o), o.casesPattern);
+    const std::string outDirectory = o.outDirectory.empty() ? "stress-report" : o.outDirectory;
+    prepareOutDirectory(outDirectory);
+    gpu::Context context(gpu::ContextOptions{o.device, false});
+    const std::string device = deviceText(context);
+    out << "stress: " << cases.size() << " cases, " << o.width << "x" << o.height << ", device "
+        << device << "\n";
+    numerics::StressOptions options;
+    options.width = o.width;
+    options.height = o.height;
+    options.shaderDirectory = shaderDirectoryFor(o);
+    options.threads = o.threads;
+    if (o.precisionGiven) options.gpuModes = {o.precision};
+    std::vector<numerics::ModeMetrics> rows;
+    for (const numerics::StressCase& c : cases) {
+        const std::vector<numerics::ModeMetrics> caseRows = numerics::runStressCase(c, &context, options, &err);
+        rows.insert(rows.end(), caseRows.begin(), caseRows.end());
+    }
+    const numerics::Report report = numerics::stressReport(rows, cases, commandLine(o, "stress"), device);
+    out << numerics::formatTable(report.table);
+    numerics::writeReportFiles(report, outDirectory, "stress", out);
+    // Robust and double must pass every case; naive must fail those built to break it.
+    int failures = 0, checked = 0;
+    for (const numerics::ModeMetrics& m : rows) {
+        if (!m.ran) continue;
+        const auto c = std::find_if(cases.begin(), cases.end(),
+                                    [&](const numerics::StressCase& sc) { return sc.name == m.caseName; });
+        const bool expectPass = m.mode != "naive" || !c->naiveFails;
+        ++checked;
+        if (numerics::withinBounds(m) == expectPass) continue;
+        ++failures;
+        out << "unexpected: " << m.caseName << " " << m.mode
+            << (expectPass ? " is beyond its bounds\n" : " passes a case built to break it\n");
+    }
+    out << "result: " << checked - failures << " of " << checked << " rows as expected"
+        << (failures ? " (FAIL)\n" : " (PASS)\n");
+    return failures ? 2 : 0;
+}
+
+int runReport(const Options& o, std::ostream& out, std::ostream& err) {
+    std::vector<std::string> warnings;
+    const Scene scene = loadScene(o.scenePath, {o.lenient}, &warnings);
+    for (const std::string& w : warnings) err << w << "\n";
+    Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
+    if (o.eye) camera.eye = *o.eye;
+    if (o.look) camera.look = *o.look;
+    if (o.up) camera.up = *o.up;
+    if (o.fov) camera.fovDegrees = *o.fov;
+    makeCameraBasis(camera, o.width, o.height);  // a bad camera fails before any render
+    const std::string outDirectory =
+        o.outDirectory.empty() ? "report-" + fs::path(o.scenePath).stem().string() : o.outDirectory;
+    prepareOutDirectory(outDirectory);
+    gpu::Context context(gpu::ContextOptions{o.device, false});
+    const std::string device = deviceText(context);
+    out << "report: " << o.scenePath << ", " << o.width << "x" << o.height << ", device " << device
+        << "\n";
+    numerics::SweepOptions options;
+    options.width = o.width;
+    options.height = o.height;
+    options.shaderDirectory = shaderDirectoryFor(o);
+    options.threads = o.threads;
+    if (o.precisionGiven) options.precision = o.precision;
+    const std::vector<numerics::SweepPoint> points = numerics::runSweep(scene, camera, context, options, &err);
+    const numerics::Report report = numerics::sweepReport(o.scenePath, points, device);
+    out << numerics::formatTable(report.table);
+    numerics::writeReportFiles(report, outDirectory, "report", out);
+    return 0;
+}
+
+}  // namespace vkray

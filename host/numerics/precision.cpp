@@ -1,0 +1,79 @@
+#include "numerics/precision.h"
+
+#include "scene/error.h"
+
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+
+namespace vkray {
+
+const char* precisionName(Precision precision) {
+    switch (precision) {
+    case Precision::Naive: return "naive";
+    case Precision::Robust: return "robust";
+    case Precision::Fp64: return "fp64";
+    }
+    return "?";
+}
+
+Precision parsePrecision(const std::string& flag, const std::string& text) {
+    for (Precision p : kAllPrecisions)
+        if (text == precisionName(p)) return p;
+    throw Error(flag + ": expected naive, robust or fp64, found '" + text + "'");
+}
+
+std::vector<std::pair<std::string, std::string>> precisionDefines(Precision precision) {
+    if (precision == Precision::Naive) return {{"VKRAY_PRECISION_NAIVE", "1"}};
+    if (precision == Precision::Fp64) return {{"VKRAY_PRECISION_FP64", "1"}};
+    return {};
+}
+
+namespace {
+
+// Camera-relative world: p' = p - origin. An object's M^-1 becomes
+// M^-1 T(origin), whose translation column M^-1 (origin, 1) is computed here
+// in double; so the eye's generic coordinates reach the shader rounded once,
+// instead of being rebuilt in float from a float eye and a float translation
+// that both lost the low digits (NUMERICS.md section 5).
+void rebaseObject(SceneObject& object, const glm::dvec3& origin) {
+    object.objectFromWorld = object.objectFromWorld * glm::translate(glm::dmat4(1.0), origin);
+    object.worldFromObject = glm::translate(glm::dmat4(1.0), -origin) * object.worldFromObject;
+    for (SceneObject& operand : object.operands) rebaseObject(operand, origin);
+}
+
+// The textbook's inverse: M rounded to float, then inverted in float. An
+// ill-conditioned M loses about cond(M) u here (NUMERICS.md section 5).
+void invertInFloat(SceneObject& object) {
+    const glm::mat4 m(object.worldFromObject);
+    object.objectFromWorld = glm::dmat4(glm::inverse(m));
+    for (SceneObject& operand : object.operands) invertInFloat(operand);
+}
+
+}  // namespace
+
+Scene rebasedOnPoint(const Scene& scene, const glm::dvec3& origin) {
+    Scene rebased = scene;
+    for (SceneObject& object : rebased.objects) rebaseObject(object, origin);
+    for (Light& light : rebased.lights) light.position -= origin;
+    if (rebased.camera) {
+        rebased.camera->eye -= origin;
+        rebased.camera->look -= origin;
+    }
+    return rebased;
+}
+
+Scene withFloatInverses(const Scene& scene) {
+    Scene naive = scene;
+    for (SceneObject& object : naive.objects) invertInFloat(object);
+    return naive;
+}
+
+GpuInputs prepareGpuInputs(Precision precision, const Scene& scene, const CameraBasis& camera) {
+    if (precision == Precision::Naive) return {withFloatInverses(scene), camera};
+    CameraBasis rebasedCamera = camera;
+    rebasedCamera.eye = glm::dvec3(0);
+    return {rebasedOnPoint(scene, camera.eye), rebasedCamera};
+}
+
+}  // namespace vkray

@@ -1,0 +1,198 @@
+#include "numerics/report_sweep.h"
+
+#include "gpu/gpu_tracer.h"
+#include "image/metrics.h"
+#include "reference/reference_tracer.h"
+#include "scene/error.h"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <map>
+#include <ostream>
+#include <thread>
+
+namespace vkray::numerics {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string sizeText(const RenderSettings& s) {
+    return std::to_string(s.width) + "x" + std::to_string(s.height);
+}
+
+std::string labelOf(const SweepPoint& p) {
+    std::string label;
+    for (const std::string& v : p.values) label += (label.empty() ? "" : " ") + v;
+    return label;
+}
+
+// Every combination, the first knob varying slowest.
+void combine(const std::vector<Knob>& knobs, size_t k, ReportConfig config,
+             std::vector<std::string> values, std::vector<SweepPoint>& out) {
+    if (k == knobs.size()) {
+        SweepPoint p;
+        p.values = values;
+        p.config = config;
+        out.push_back(p);
+        return;
+    }
+    for (const std::string& v : knobs[k].values) {
+        ReportConfig next = config;
+        knobs[k].apply(next, v);
+        std::vector<std::string> nextValues = values;
+        nextValues.push_back(knobs[k].name + " " + v);
+        combine(knobs, k + 1, next, nextValues, out);
+    }
+}
+
+}  // namespace
+
+std::vector<Knob> reportKnobs() {
+    return {
+        {"precision", {"naive", "robust", "fp64"},
+         [](ReportConfig& c, const std::string& v) { c.precision = parsePrecision("precision", v); }},
+        {"spp", {"1", "4"},
+         [](ReportConfig& c, const std::string& v) { c.settings.spp = std::stoi(v); }},
+        {"block", {"1", "2", "4"},
+         [](ReportConfig& c, const std::string& v) { c.settings.block = std::stoi(v); }},
+        {"size", {"full", "half"},
+         [](ReportConfig& c, const std::string& v) {
+             if (v == "half") {
+                 c.settings.width = std::max(1, c.settings.width / 2);
+                 c.settings.height = std::max(1, c.settings.height / 2);
+             }
+         }},
+    };
+}
+
+std::vector<SweepPoint> runSweep(const Scene& scene, const Camera& camera, gpu::Context& context,
+                                 const SweepOptions& options, std::ostream* log) {
+    ReportConfig base;
+    base.settings = {options.width, options.height, 1};
+    std::vector<SweepPoint> points;
+    combine(reportKnobs(), 0, base, {}, points);
+    if (options.precision)
+        std::erase_if(points, [&](const SweepPoint& p) { return p.config.precision != *options.precision; });
+
+    // The reference of each size, rendered once (and itself a point: error 0).
+    struct Reference {
+        Frame frame;
+        double seconds;
+    };
+    std::map<std::pair<int, int>, Reference> references;
+    const int threads = options.threads > 0 ? options.threads
+                                            : int(std::max(1u, std::thread::hardware_concurrency()));
+    const auto referenceFor = [&](const RenderSettings& s) -> const Reference& {
+        const auto key = std::make_pair(s.width, s.height);
+        auto it = references.find(key);
+        if (it != references.end()) return it->second;
+        const RenderSettings full{s.width, s.height, 1, kReferenceSpp};
+        const auto start = Clock::now();
+        Frame frame = reference::render(scene, makeCameraBasis(camera, s.width, s.height), full, {threads});
+        const double seconds = secondsSince(start);
+        if (log) *log << "reference " << sizeText(full) << ": cpu double " << seconds << " s\n";
+        return references.emplace(key, Reference{std::move(frame), seconds}).first->second;
+    };
+
+    std::map<Precision, std::unique_ptr<gpu::GpuTracer>> tracers;
+    for (SweepPoint& p : points) {
+        const RenderSettings& s = p.config.settings;
+        const Reference& reference = referenceFor(s);
+        if (p.config.precision == Precision::Fp64 && !context.device().shaderFloat64) {
+            p.note = "the device has no shaderFloat64";
+            continue;
+        }
+        auto& tracer = tracers[p.config.precision];
+        if (!tracer)
+            tracer = std::make_unique<gpu::GpuTracer>(
+                context, gpu::GpuRenderOptions{.shaderDirectory = options.shaderDirectory,
+                                               .precision = p.config.precision});
+        const CameraBasis basis = makeCameraBasis(camera, s.width, s.height);
+        Frame frame;
+        p.seconds = std::numeric_limits<double>::infinity();
+        for (int run = 0; run < 3; ++run) {  // the fastest of three
+            gpu::GpuRenderStats stats;
+            frame = tracer->render(scene, basis, s, &stats);
+            p.seconds = std::min(p.seconds, stats.renderSeconds);
+        }
+        CompareResult result = compareImages(colorImage(frame), colorImage(reference.frame), {});
+        compareIds(idImage(frame), idImage(reference.frame), result);
+        p.ran = true;
+        p.rmse = result.rmse;
+        p.maxError = result.maxAbsError;
+        p.idMismatchPercent = result.idMismatchPercent;
+        if (log) *log << labelOf(p) << ": " << p.seconds << " s, RMSE " << p.rmse << "\n";
+    }
+    for (const auto& [size, reference] : references) {
+        SweepPoint p;
+        p.values = {"cpu double", "spp " + std::to_string(kReferenceSpp), "block 1",
+                    "size " + std::to_string(size.first) + "x" + std::to_string(size.second)};
+        p.config.settings = {size.first, size.second, 1, kReferenceSpp};
+        p.ran = true;
+        p.seconds = reference.seconds;
+        p.note = "the reference";
+        points.push_back(p);
+    }
+    return points;
+}
+
+Report sweepReport(const std::string& scenePath, const std::vector<SweepPoint>& points,
+                   const std::string& device) {
+    Report report;
+    report.title = "vkray report " + scenePath;
+    report.paragraphs = {
+        "Error against run time over precision mode, samples per pixel, block size and image "
+        "size, on " + device +
+            ". Each GPU configuration is rendered three times and the fastest render counts. Its "
+            "error is the colour difference (clamped to [0, 1]) from the CPU reference in double "
+            "at " + std::to_string(kReferenceSpp) + " samples per pixel, block 1 and the same "
+            "size: RMSE over all pixels and channels, and the largest difference.",
+        "In the plots, lower left is better; the dashed line joins the configurations that no "
+        "other beats in both time and error (the Pareto front). Hollow red points have object "
+        "ids differing from the reference on more than 1 % of pixels (ids are those of each "
+        "pixel's first sample, which sits elsewhere in the reference's finer grid of samples: "
+        "a fraction of a percent of edge pixels differ in any configuration)."};
+    report.table.columns = {"configuration", "size", "time s", "RMSE", "max error", "ids differ %", "note"};
+    std::map<std::string, std::pair<Plot, Plot>> plots;  // by size
+    for (const SweepPoint& p : points) {
+        const std::string size = sizeText(p.config.settings);
+        std::vector<std::string> label(p.values.begin(), p.values.end() - 1);  // without the size
+        std::string text;
+        for (const std::string& v : label) text += (text.empty() ? "" : " ") + v;
+        using V = ReportValue;
+        report.table.rows.push_back({V::str(text), V::str(size), p.ran ? V::num(p.seconds) : V{},
+                                     p.ran ? V::num(p.rmse) : V{}, p.ran ? V::num(p.maxError) : V{},
+                                     p.ran ? V::num(p.idMismatchPercent) : V{}, V::str(p.note)});
+        if (!p.ran) continue;
+        auto& [rmsePlot, maxPlot] = plots[size];
+        rmsePlot.title = "RMSE against time, " + size;
+        maxPlot.title = "max error against time, " + size;
+        rmsePlot.xLabel = maxPlot.xLabel = "render time (s)";
+        rmsePlot.yLabel = "colour RMSE";
+        maxPlot.yLabel = "max colour error";
+        const bool flagged = p.idMismatchPercent > 1.0;
+        std::string shortLabel;  // "robust b2"
+        for (std::string v : label) {
+            for (const char* knob : {"precision ", "spp ", "block "}) {
+                const std::string k = knob;
+                if (v.rfind(k, 0) == 0) v = (k == "block " ? "b" : k == "spp " ? "s" : "") + v.substr(k.size());
+            }
+            shortLabel += (shortLabel.empty() ? "" : " ") + v;
+        }
+        rmsePlot.points.push_back({shortLabel, p.seconds, p.rmse, flagged});
+        maxPlot.points.push_back({shortLabel, p.seconds, p.maxError, flagged});
+    }
+    for (auto& [size, pair] : plots) {
+        report.plots.push_back(pair.first);
+        report.plots.push_back(pair.second);
+    }
+    return report;
+}
+
+}  // namespace vkray::numerics

@@ -1,0 +1,299 @@
+#include "numerics/report_writer.h"
+
+#include "image/image_io.h"
+#include "scene/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+namespace vkray::numerics {
+
+namespace {
+
+std::string printed(const char* format, double v) {
+    char text[64];
+    std::snprintf(text, sizeof text, format, v);
+    return text;
+}
+
+// Short form for the text table and plot labels; full form for files.
+std::string shortText(const ReportValue& v) {
+    switch (v.kind) {
+    case ReportValue::Empty: return "-";
+    case ReportValue::Integer: return std::to_string(v.integer);
+    case ReportValue::Text: return v.text;
+    case ReportValue::Number:
+        if (v.number == 0) return "0";
+        return printed(std::abs(v.number) >= 1e-3 && std::abs(v.number) < 1e5 ? "%.4g" : "%.2e", v.number);
+    }
+    return "";
+}
+
+std::string fullNumber(double v) { return std::isfinite(v) ? printed("%.9g", v) : ""; }
+
+std::string csvField(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string out = "\"";
+    for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+}
+
+std::string jsonString(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+        switch (c) {
+        case '"': out += "\\\""; break;
+        case '\\': out += "\\\\"; break;
+        case '\n': out += "\\n"; break;
+        case '\t': out += "\\t"; break;
+        default:
+            if (static_cast<unsigned char>(c) < 0x20) {
+                char escaped[8];
+                std::snprintf(escaped, sizeof escaped, "\\u%04x", unsigned(c));
+                out += escaped;
+            } else {
+                out += c;
+            }
+        }
+    }
+    return out + "\"";
+}
+
+std::string jsonValue(const ReportValue& v) {
+    switch (v.kind) {
+    case ReportValue::Empty: return "null";
+    case ReportValue::Integer: return std::to_string(v.integer);
+    case ReportValue::Text: return jsonString(v.text);
+    case ReportValue::Number: return std::isfinite(v.number) ? fullNumber(v.number) : "null";
+    }
+    return "null";
+}
+
+std::string xml(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += "&quot;"; break;
+        default: out += c;
+        }
+    }
+    return out;
+}
+
+// A log10 axis over the positive values, whole decades; values <= 0 sit on
+// an extra line one decade below, labelled 0.
+struct LogAxis {
+    int lo = 0, hi = 1;  // decades
+    bool zeroLine = false;
+
+    explicit LogAxis(const std::vector<double>& values) {
+        double mn = std::numeric_limits<double>::infinity(), mx = 0;
+        for (double v : values) {
+            if (!(v > 0) || !std::isfinite(v)) {
+                zeroLine = zeroLine || v <= 0;
+                continue;
+            }
+            mn = std::min(mn, v);
+            mx = std::max(mx, v);
+        }
+        if (mx > 0) {
+            lo = int(std::floor(std::log10(mn)));
+            hi = std::max(lo + 1, int(std::ceil(std::log10(mx))));
+        }
+    }
+    int first() const { return zeroLine ? lo - 1 : lo; }
+    // Position in [0, 1] along the axis.
+    double at(double v) const {
+        const double decade = v > 0 && std::isfinite(v) ? std::log10(v) : double(first());
+        return (std::clamp(decade, double(first()), double(hi)) - first()) / double(hi - first());
+    }
+};
+
+std::string decadeLabel(int decade) {
+    if (decade == 0) return "1";
+    if (decade == 1) return "10";
+    return "1e" + std::to_string(decade);
+}
+
+const char* kPalette[] = {"#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf", "#e377c2"};
+
+}  // namespace
+
+std::string formatTable(const ReportTable& table) {
+    std::vector<size_t> widths;
+    for (const std::string& c : table.columns) widths.push_back(c.size());
+    for (const auto& row : table.rows)
+        for (size_t i = 0; i < row.size() && i < widths.size(); ++i)
+            widths[i] = std::max(widths[i], shortText(row[i]).size());
+    std::ostringstream out;
+    const auto line = [&](const std::vector<std::string>& cells) {
+        for (size_t i = 0; i < cells.size(); ++i) {
+            const bool left = i == 0 || i == 1;
+            const std::string pad(widths[i] - cells[i].size(), ' ');
+            out << (i ? "  " : "") << (left ? cells[i] + pad : pad + cells[i]);
+        }
+        out << "\n";
+    };
+    line(table.columns);
+    for (const auto& row : table.rows) {
+        std::vector<std::string> cells;
+        for (const ReportValue& v : row) cells.push_back(shortText(v));
+        line(cells);
+    }
+    return out.str();
+}
+
+std::string toCsv(const ReportTable& table) {
+    std::ostringstream out;
+    for (size_t i = 0; i < table.columns.size(); ++i) out << (i ? "," : "") << csvField(table.columns[i]);
+    out << "\n";
+    for (const auto& row : table.rows) {
+        for (size_t i = 0; i < row.size(); ++i) {
+            const ReportValue& v = row[i];
+            out << (i ? "," : "");
+            if (v.kind == ReportValue::Number) out << fullNumber(v.number);
+            else if (v.kind == ReportValue::Integer) out << v.integer;
+            else if (v.kind == ReportValue::Text) out << csvField(v.text);
+        }
+        out << "\n";
+    }
+    return out.str();
+}
+
+std::string toJson(const Report& report) {
+    std::ostringstream out;
+    out << "{\n  \"title\": " << jsonString(report.title) << ",\n  \"notes\": [";
+    for (size_t i = 0; i < report.paragraphs.size(); ++i)
+        out << (i ? ", " : "") << jsonString(report.paragraphs[i]);
+    out << "],\n  \"columns\": [";
+    for (size_t i = 0; i < report.table.columns.size(); ++i)
+        out << (i ? ", " : "") << jsonString(report.table.columns[i]);
+    out << "],\n  \"rows\": [\n";
+    for (size_t r = 0; r < report.table.rows.size(); ++r) {
+        out << "    {";
+        const auto& row = report.table.rows[r];
+        for (size_t i = 0; i < row.size(); ++i)
+            out << (i ? ", " : "") << jsonString(report.table.columns[i]) << ": " << jsonValue(row[i]);
+        out << "}" << (r + 1 < report.table.rows.size() ? "," : "") << "\n";
+    }
+    out << "  ]\n}\n";
+    return out.str();
+}
+
+std::string toSvg(const Plot& plot) {
+    constexpr double W = 420, H = 300, left = 64, right = 16, top = 28, bottom = 44;
+    std::vector<double> xs, ys;
+    for (const PlotPoint& p : plot.points) {
+        xs.push_back(p.x);
+        ys.push_back(p.y);
+    }
+    const LogAxis ax(xs), ay(ys);
+    const auto px = [&](double x) { return left + ax.at(x) * (W - left - right); };
+    const auto py = [&](double y) { return H - bottom - ay.at(y) * (H - top - bottom); };
+    std::ostringstream s;
+    s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
+      << "\" viewBox=\"0 0 " << W << " " << H << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
+    s << "<title>" << xml(plot.title) << "</title>\n";
+    s << "<rect x=\"0\" y=\"0\" width=\"" << W << "\" height=\"" << H << "\" fill=\"white\"/>\n";
+    s << "<text x=\"" << W / 2 << "\" y=\"16\" text-anchor=\"middle\" font-weight=\"bold\">"
+      << xml(plot.title) << "</text>\n";
+    for (int d = ax.first(); d <= ax.hi; ++d) {
+        const double x = px(d < ax.lo ? 0.0 : std::pow(10.0, d));
+        s << "<line x1=\"" << x << "\" y1=\"" << top << "\" x2=\"" << x << "\" y2=\"" << H - bottom
+          << "\" stroke=\"#ddd\"/>\n<text x=\"" << x << "\" y=\"" << H - bottom + 14
+          << "\" text-anchor=\"middle\">" << (d < ax.lo ? "0" : decadeLabel(d)) << "</text>\n";
+    }
+    for (int d = ay.first(); d <= ay.hi; ++d) {
+        const double y = py(d < ay.lo ? 0.0 : std::pow(10.0, d));
+        s << "<line x1=\"" << left << "\" y1=\"" << y << "\" x2=\"" << W - right << "\" y2=\"" << y
+          << "\" stroke=\"#ddd\"/>\n<text x=\"" << left - 4 << "\" y=\"" << y + 4
+          << "\" text-anchor=\"end\">" << (d < ay.lo ? "0" : decadeLabel(d)) << "</text>\n";
+    }
+    s << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << W - left - right
+      << "\" height=\"" << H - top - bottom << "\" fill=\"none\" stroke=\"#444\"/>\n";
+    s << "<text x=\"" << (left + W - right) / 2 << "\" y=\"" << H - 8 << "\" text-anchor=\"middle\">"
+      << xml(plot.xLabel) << "</text>\n";
+    s << "<text transform=\"translate(14 " << (top + H - bottom) / 2
+      << ") rotate(-90)\" text-anchor=\"middle\">" << xml(plot.yLabel) << "</text>\n";
+    // The Pareto front: by time, each point faster than all with less error.
+    std::vector<PlotPoint> sorted = plot.points;
+    std::sort(sorted.begin(), sorted.end(), [](const PlotPoint& a, const PlotPoint& b) {
+        return a.x < b.x || (a.x == b.x && a.y < b.y);
+    });
+    std::string front;
+    double bestY = std::numeric_limits<double>::infinity();
+    for (const PlotPoint& p : sorted) {
+        if (!(p.y < bestY)) continue;
+        bestY = p.y;
+        front += printed("%.1f", px(p.x)) + "," + printed("%.1f", py(p.y)) + " ";
+    }
+    if (!front.empty())
+        s << "<polyline points=\"" << front
+          << "\" fill=\"none\" stroke=\"#999\" stroke-dasharray=\"4 3\"/>\n";
+    for (size_t i = 0; i < plot.points.size(); ++i) {
+        const PlotPoint& p = plot.points[i];
+        const char* color = kPalette[i % (sizeof kPalette / sizeof *kPalette)];
+        const double x = px(p.x), y = py(p.y);
+        s << "<circle cx=\"" << x << "\" cy=\"" << y << "\" r=\"5\" "
+          << (p.flagged ? std::string("fill=\"white\" stroke=\"#d62728\" stroke-width=\"2\"")
+                        : "fill=\"" + std::string(color) + "\"")
+          << "><title>" << xml(p.label) << ": time " << shortText(ReportValue::num(p.x))
+          << ", error " << shortText(ReportValue::num(p.y)) << "</title></circle>\n";
+        const bool leftSide = x > W - right - 90;
+        s << "<text x=\"" << (leftSide ? x - 8 : x + 8) << "\" y=\"" << y - 6 << "\""
+          << (leftSide ? " text-anchor=\"end\"" : "") << ">" << xml(p.label) << "</text>\n";
+    }
+    s << "</svg>\n";
+    return s.str();
+}
+
+std::string toHtml(const Report& report) {
+    std::ostringstream h;
+    h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n<title>"
+      << xml(report.title) << "</title>\n<style>\n"
+      << "body { font-family: sans-serif; margin: 2em; color: #222; }\n"
+      << "table { border-collapse: collapse; font-size: 13px; }\n"
+      << "th, td { border: 1px solid #ccc; padding: 2px 6px; text-align: right; }\n"
+      << "th { background: #f0f0f0; } td.text { text-align: left; }\n"
+      << ".plots { display: flex; flex-wrap: wrap; gap: 12px; margin-top: 1em; }\n"
+      << "</style>\n</head>\n<body>\n<h1>" << xml(report.title) << "</h1>\n";
+    for (const std::string& p : report.paragraphs) h << "<p>" << xml(p) << "</p>\n";
+    h << "<table>\n<tr>";
+    for (const std::string& c : report.table.columns) h << "<th>" << xml(c) << "</th>";
+    h << "</tr>\n";
+    for (const auto& row : report.table.rows) {
+        h << "<tr>";
+        for (const ReportValue& v : row)
+            h << (v.kind == ReportValue::Text ? "<td class=\"text\">" : "<td>") << xml(shortText(v))
+              << "</td>";
+        h << "</tr>\n";
+    }
+    h << "</table>\n<div class=\"plots\">\n";
+    for (const Plot& plot : report.plots) h << "<div>\n" << toSvg(plot) << "</div>\n";
+    h << "</div>\n</body>\n</html>\n";
+    return h.str();
+}
+
+void writeReportFiles(const Report& report, const std::string& directory, const std::string& stem,
+                      std::ostream& out) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(directory, ec);
+    if (ec || !fs::is_directory(directory))
+        throw Error("--out " + directory + ": cannot create the folder (" + ec.message() + ")");
+    const std::string base = (fs::path(directory) / stem).string();
+    writeFileAtomically(base + ".csv", toCsv(report.table));
+    writeFileAtomically(base + ".json", toJson(report));
+    writeFileAtomically(base + ".html", toHtml(report));
+    out << "wrote " << base << ".csv, " << base << ".json, " << base << ".html\n";
+}
+
+}  // namespace vkray::numerics

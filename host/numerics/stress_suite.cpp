@@ -1,0 +1,253 @@
+#include "numerics/stress_suite.h"
+
+#include "gpu/gpu_tracer.h"
+#include "numerics/feelers.h"
+#include "reference/scene_intersector.h"
+#include "scene/error.h"
+#include "scene/scene_geometry.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <ostream>
+#include <thread>
+
+namespace vkray::numerics {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string trimmed(const std::string& s) {
+    const size_t a = s.find_first_not_of(" \t\r");
+    if (a == std::string::npos) return "";
+    return s.substr(a, s.find_last_not_of(" \t\r") - a + 1);
+}
+
+int threadCount(int threads) {
+    return threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+// The CPU reference in double: the reference's own intersector on the
+// primary ray built in double, t kept in double (a Frame's depth is float).
+std::vector<ModeSample> traceDouble(const Scene& scene, const CameraBasis& camera,
+                                    const RenderSettings& settings, int threads) {
+    const reference::SceneIntersector intersector(scene);
+    std::vector<ModeSample> samples(size_t(settings.width) * size_t(settings.height));
+    std::atomic<int> nextRow{0};
+    auto worker = [&] {
+        for (int y = nextRow++; y < settings.height; y = nextRow++) {
+            for (int x = 0; x < settings.width; ++x) {
+                const double sx = 2 * (x + 0.5) / settings.width - 1;
+                const double sy = 1 - 2 * (y + 0.5) / settings.height;
+                const glm::dvec3 d = glm::normalize(-camera.n +
+                                                    sx * camera.tanHalfFov * camera.aspect * camera.u +
+                                                    sy * camera.tanHalfFov * camera.v);
+                const auto hit = intersector.closestHit({camera.eye, d}, 0.0);
+                ModeSample& s = samples[size_t(y) * size_t(settings.width) + size_t(x)];
+                s = hit ? ModeSample{hit->t, hit->normal, hit->object}
+                        : ModeSample{std::numeric_limits<double>::infinity(), glm::dvec3(0), -1};
+            }
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threadCount(threads); ++i) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+    return samples;
+}
+
+std::vector<ModeSample> samplesOf(const Frame& frame) {
+    std::vector<ModeSample> samples(frame.pixelCount());
+    for (size_t i = 0; i < samples.size(); ++i)
+        samples[i] = {frame.id[i] >= 0 ? double(frame.depth[i]) : std::numeric_limits<double>::infinity(),
+                      glm::dvec3(frame.normal[i]), frame.id[i]};
+    return samples;
+}
+
+}  // namespace
+
+StressCase readStressCase(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error(path + ": cannot read the stress case");
+    StressCase c;
+    c.path = path;
+    c.name = fs::path(path).stem().string();
+    std::string line, *current = nullptr;
+    int lineNumber = 0;
+    while (std::getline(in, line)) {
+        ++lineNumber;
+        const std::string text = trimmed(line);
+        if (text.empty()) continue;
+        if (text[0] != '!') break;  // the header ends at the first non-comment line
+        const std::string body = trimmed(text.substr(1));
+        const size_t colon = body.find(':');
+        const std::string key = colon == std::string::npos ? "" : body.substr(0, colon);
+        const std::string value = colon == std::string::npos ? "" : trimmed(body.substr(colon + 1));
+        if (key == "stress") current = &c.title;
+        else if (key == "stiff") current = &c.stiff;
+        else if (key == "correct") current = &c.correct;
+        else if (key == "naive" || key == "secondary") {
+            current = nullptr;
+            const bool naive = key == "naive";
+            if (naive && (value == "fails" || value == "passes")) c.naiveFails = value == "fails";
+            else if (!naive && (value == "shadow" || value == "refraction")) c.refraction = value == "refraction";
+            else
+                throw Error(path + ":" + std::to_string(lineNumber) + ": '" + key + ":' takes " +
+                            (naive ? "fails or passes" : "shadow or refraction") + ", found '" +
+                            value + "'");
+            continue;
+        } else if (current && !body.empty()) {  // continuation of the last key
+            *current += " " + body;
+            continue;
+        } else {
+            current = nullptr;
+            continue;
+        }
+        *current = value;
+    }
+    if (c.title.empty() || c.stiff.empty() || c.correct.empty())
+        throw Error(path + ": a stress case starts with '! stress:', '! stiff:' and '! correct:' "
+                    "comment lines (see scenes/stress/README.md)");
+    return c;
+}
+
+std::vector<StressCase> findStressCases(const std::string& directory, const std::string& pattern) {
+    if (!fs::is_directory(directory))
+        throw Error("stress cases: '" + directory + "' is not a folder (pass --cases-dir DIR)");
+    std::vector<std::string> paths;
+    for (const auto& entry : fs::directory_iterator(directory)) {
+        const fs::path p = entry.path();
+        if (p.extension() != ".sdl") continue;
+        if (!pattern.empty() && pattern != "*" && p.stem().string().find(pattern) == std::string::npos)
+            continue;
+        paths.push_back(p.string());
+    }
+    std::sort(paths.begin(), paths.end());
+    if (paths.empty())
+        throw Error("stress cases: no scene in '" + directory + "' matches '" + pattern + "'");
+    std::vector<StressCase> cases;
+    for (const std::string& path : paths) cases.push_back(readStressCase(path));
+    return cases;
+}
+
+bool withinBounds(const ModeMetrics& m) {
+    const bool isDouble = m.mode == kCpuDoubleMode, isFp64 = m.mode == "fp64";
+    const double tBound = isDouble ? kDoubleTErrorBound : isFp64 ? kFp64TErrorBound : kFloatTErrorBound;
+    const double normalBound = isDouble ? kDoubleNormalErrorBound
+                               : isFp64 ? kFp64NormalErrorBound
+                                        : kFloatNormalErrorBound;
+    return m.ran && m.flips == 0 && m.wrongId == 0 && m.acne == 0 && m.tErrMax <= tBound &&
+           m.normalErrMax <= normalBound;
+}
+
+ModeMetrics compareWithOracle(const std::vector<OraclePixel>& oracle,
+                              const std::vector<ModeSample>& samples, int band) {
+    if (oracle.size() != samples.size()) throw Error("internal: oracle and samples differ in size");
+    ModeMetrics m;
+    m.ran = true;
+    m.pixels = oracle.size();
+    double tSquares = 0, nSquares = 0;
+    for (size_t i = 0; i < oracle.size(); ++i) {
+        const OraclePixel& o = oracle[i];
+        const ModeSample& s = samples[i];
+        if (o.silhouette[band]) {
+            ++m.silhouette;
+            continue;
+        }
+        if ((o.hit.id >= 0) != (s.id >= 0)) {
+            ++m.flips;
+            continue;
+        }
+        if (o.hit.id < 0) continue;
+        if (o.hit.id != s.id) {
+            ++m.wrongId;
+            continue;
+        }
+        ++m.compared;
+        const double tTrue = double(o.hit.t);
+        const double tErr = std::isfinite(s.t)
+                                ? std::max(0.0, std::abs(s.t - tTrue) - o.tSpread[band]) / tTrue
+                                : std::numeric_limits<double>::infinity();
+        const double nErr = std::max(0.0, angleBetween(s.normal, toDvec3(o.hit.normal)) - o.normalSpread[band]);
+        m.tErrMax = std::max(m.tErrMax, tErr);
+        m.normalErrMax = std::max(m.normalErrMax, std::isnan(nErr) ? M_PI : nErr);
+        tSquares += tErr * tErr;
+        nSquares += std::isnan(nErr) ? M_PI * M_PI : nErr * nErr;
+    }
+    if (m.compared > 0) {
+        m.tErrRms = std::sqrt(tSquares / double(m.compared));
+        m.normalErrRms = std::sqrt(nSquares / double(m.compared));
+    }
+    return m;
+}
+
+std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Context* context,
+                                       const StressOptions& options, std::ostream* log) {
+    const Scene scene = loadScene(stressCase.path, {}, nullptr);
+    requireOracleScene(scene);
+    if (!scene.camera) throw Error(stressCase.path + ": a stress case must set its camera");
+    const RenderSettings settings{options.width, options.height, 1};
+    const CameraBasis camera = makeCameraBasis(*scene.camera, options.width, options.height);
+
+    const auto oracleStart = Clock::now();
+    const std::vector<OraclePixel> oracle = renderOracle(scene, camera, settings, options.threads);
+    if (log)
+        *log << stressCase.name << ": oracle " << secondsSince(oracleStart) << " s\n";
+
+    std::vector<ModeMetrics> rows;
+    const auto finish = [&](ModeMetrics m, const std::string& mode, double seconds) {
+        m.caseName = stressCase.name;
+        m.mode = mode;
+        m.seconds = seconds;
+        if (log) *log << stressCase.name << ": " << mode << " " << seconds << " s\n";
+        rows.push_back(std::move(m));
+    };
+    for (Precision precision : options.gpuModes) {
+        ModeMetrics m;
+        if (!context || (precision == Precision::Fp64 && !context->device().shaderFloat64)) {
+            m.note = !context ? "no Vulkan device" : "the device has no shaderFloat64";
+            finish(m, precisionName(precision), 0);
+            continue;
+        }
+        gpu::GpuTracer tracer(*context, {.shaderDirectory = options.shaderDirectory, .precision = precision});
+        // The fastest of three renders (the first also warms caches).
+        Frame frame;
+        double best = std::numeric_limits<double>::infinity();
+        for (int run = 0; run < 3; ++run) {
+            gpu::GpuRenderStats stats;
+            frame = tracer.render(scene, camera, settings, &stats);
+            best = std::min(best, stats.renderSeconds);
+        }
+        const std::vector<ModeSample> samples = samplesOf(frame);
+        // fp64 builds its rays in double: its band is double's.
+        m = compareWithOracle(oracle, samples, precision == Precision::Fp64 ? 1 : 0);
+        const FeelerStats feelers = stressCase.refraction
+                                        ? refractionExitErrors(scene, camera, oracle, samples, precision)
+                                        : shadowFeelerAcne(scene, camera, oracle, samples, precision);
+        m.feelers = feelers.traced;
+        m.acne = feelers.failed;
+        finish(m, precisionName(precision), best);
+    }
+    if (options.cpuDouble) {
+        const auto start = Clock::now();
+        const std::vector<ModeSample> samples = traceDouble(scene, camera, settings, options.threads);
+        const double seconds = secondsSince(start);
+        finish(compareWithOracle(oracle, samples, 1), kCpuDoubleMode, seconds);
+    }
+    return rows;
+}
+
+}  // namespace vkray::numerics

@@ -1,0 +1,70 @@
+// Precision modes (host/numerics/precision.h, README "Numerics").
+// VKRAY_PRECISION_NAIVE = 1 selects the textbook formulas inside the shape
+// files (each under `#if VKRAY_PRECISION_NAIVE`, the robust remedy named in
+// the `#else` branch) and the textbook's fixed epsilon below. The default,
+// robust, needs no define; VKRAY_PRECISION_FP64 = 1 is robust with ray
+// geometry in double (`real` below).
+#ifndef VKRAY_PRECISION_NAIVE
+#define VKRAY_PRECISION_NAIVE 0
+#endif
+#ifndef VKRAY_PRECISION_FP64
+#define VKRAY_PRECISION_FP64 0
+#endif
+
+// The type of ray geometry: the ray's origin, direction and t, the inverse
+// transforms applied to it, and every generic intersection (shapes/*.glsl).
+// float, or double in the fp64 variant (VKRAY_PRECISION_FP64 = 1, needs the
+// device's shaderFloat64). Shading (lights, textures, colours) stays float.
+#if VKRAY_PRECISION_FP64
+#define real double
+#define rvec2 dvec2
+#define rvec3 dvec3
+#define rvec4 dvec4
+const double ROOT_TOLERANCE = 1e-15lf;  // relative step at which iterative root finders stop
+#else
+#define real float
+#define rvec2 vec2
+#define rvec3 vec3
+#define rvec4 vec4
+const float ROOT_TOLERANCE = 1e-7;
+#endif
+
+// Naive mode's fixed epsilon: the smallest t a hit may have on every ray, and
+// the distance a secondary ray's origin is pushed along the normal. A fixed
+// length cannot suit every scale: at 1e5 from the origin it is below the
+// float spacing (0.0078) and rounds away (NUMERICS.md section 3).
+const float NAIVE_EPSILON = 1e-4;
+
+// The origin of a secondary ray (shadow feeler, reflection, refraction)
+// leaving point p toward `side` (a direction; which side of the surface with
+// normal n it leaves to). The one implementation of the offset; each mode
+// keeps its own:
+//   naive   p moved by the fixed epsilon along n (and tMin = NAIVE_EPSILON);
+//   robust  after Ray Tracing Gems ch. 6 (Waechter and Binder): moved along
+//           n by a distance that grows with |p| like the rounding error of p
+//           and of the ray re-intersecting the surface: 2^-18 of the largest
+//           coordinate, 32 to 64 of its float spacings (OFFSET_SCALE of
+//           layout.h), or a small constant near the origin;
+//   fp64    the same in double (2^-47 of the largest coordinate, 2^-45 near
+//           the origin).
+vec3 naiveOffsetRayOrigin(vec3 p, vec3 n) { return p + NAIVE_EPSILON * n; }
+
+#if VKRAY_PRECISION_FP64
+const double OFFSET_DOUBLE_SCALE = 1.0lf / 140737488355328.0lf;  // 2^-47 = 32 * 2^-52
+const double OFFSET_DOUBLE_NEAR_ORIGIN_STEP = 1.0lf / 35184372088832.0lf;  // 2^-45
+#endif
+
+rvec3 offsetOrigin(rvec3 p, vec3 n, vec3 side) {
+    if (dot(n, side) < 0.0) n = -n;
+#if VKRAY_PRECISION_NAIVE
+    return naiveOffsetRayOrigin(p, n);
+#else
+    real largest = max(abs(p.x), max(abs(p.y), abs(p.z)));
+#if VKRAY_PRECISION_FP64
+    real step = max(OFFSET_DOUBLE_SCALE * largest, OFFSET_DOUBLE_NEAR_ORIGIN_STEP);
+#else
+    real step = largest < OFFSET_NEAR_ORIGIN ? OFFSET_NEAR_ORIGIN_STEP : OFFSET_SCALE * largest;
+#endif
+    return p + step * rvec3(n);
+#endif
+}

@@ -1,0 +1,213 @@
+// The report files (CSV, JSON, HTML with SVG plots), `vkray report`'s sweep
+// over the knobs, and both commands as a user runs them.
+#include "numerics/document_check.h"
+#include "numerics/report_sweep.h"
+#include "numerics/report_writer.h"
+#include "scene/scene_geometry.h"
+#include "support/cli_fixture.h"
+#include "support/gpu_fixture.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace vkray::numerics {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string readFile(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+Report sampleReport() {
+    Report r;
+    r.title = "a <title> & more";
+    r.paragraphs = {"line with \"quotes\", commas\nand a newline"};
+    r.table.columns = {"name", "value", "count"};
+    using V = ReportValue;
+    r.table.rows = {{V::str("plain"), V::num(1.25e-7), V::whole(3)},
+                    {V::str("needs, \"quoting\""), V{}, V::whole(-1)},
+                    {V::str("zero"), V::num(0), V::whole(0)}};
+    Plot plot;
+    plot.title = "t & time";
+    plot.xLabel = "s";
+    plot.yLabel = "error";
+    plot.points = {{"slow exact", 2.0, 0.0, false}, {"fast <rough>", 0.01, 3e-3, true},
+                   {"middle", 0.1, 1e-6, false}, {"dominated", 3.0, 1e-2, false}};
+    r.plots = {plot};
+    return r;
+}
+
+TEST(ReportWriter, CsvQuotesAndKeepsFullPrecision) {
+    const auto rows = test::parseCsv(toCsv(sampleReport().table));
+    ASSERT_EQ(rows.size(), 4u);
+    EXPECT_EQ(rows[0], (std::vector<std::string>{"name", "value", "count"}));
+    EXPECT_EQ(rows[1], (std::vector<std::string>{"plain", "1.25e-07", "3"}));
+    EXPECT_EQ(rows[2], (std::vector<std::string>{"needs, \"quoting\"", "", "-1"}));
+}
+
+TEST(ReportWriter, JsonParsesWithNullsAndEscapes) {
+    const test::Json json = test::JsonReader(toJson(sampleReport())).document();
+    EXPECT_EQ(json["title"].text, "a <title> & more");
+    EXPECT_EQ(json["notes"].items.at(0).text, "line with \"quotes\", commas\nand a newline");
+    ASSERT_EQ(json["rows"].items.size(), 3u);
+    EXPECT_EQ(json["rows"].items[0]["value"].number, 1.25e-7);
+    EXPECT_EQ(json["rows"].items[1]["value"].kind, test::Json::Null);
+    EXPECT_EQ(json["rows"].items[1]["name"].text, "needs, \"quoting\"");
+}
+
+TEST(ReportWriter, TableAlignsAndShortensNumbers) {
+    const std::string text = formatTable(sampleReport().table);
+    EXPECT_NE(text.find("1.25e-07"), std::string::npos) << text;
+    EXPECT_NE(text.find("plain"), std::string::npos);
+    std::istringstream lines(text);
+    std::string first, second;
+    std::getline(lines, first);
+    std::getline(lines, second);
+    EXPECT_EQ(first.size(), second.size()) << text;
+}
+
+TEST(ReportWriter, HtmlIsWellFormedWithOneSvgPerPlotAndAParetoFront) {
+    const std::string html = toHtml(sampleReport());
+    EXPECT_EQ(test::xmlProblem(html), "");
+    EXPECT_EQ(test::xmlProblem("<p><b>x</p></b>"), "</p> closes <b> at 7");  // the checker checks
+    EXPECT_NE(html.find("a &lt;title&gt; &amp; more"), std::string::npos);
+    const std::string svg = toSvg(sampleReport().plots[0]);
+    EXPECT_EQ(test::xmlProblem(svg), "");
+    // Four points, the zero drawn on its own "0" line, and a front through the
+    // three undominated ones (fast, middle, slow exact), not "dominated".
+    size_t circles = 0;
+    for (size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1)) ++circles;
+    EXPECT_EQ(circles, 4u);
+    EXPECT_NE(svg.find(">0</text>"), std::string::npos);
+    const size_t front = svg.find("<polyline points=\"");
+    ASSERT_NE(front, std::string::npos);
+    const std::string points = svg.substr(front, svg.find('"', front + 18) - front);
+    EXPECT_EQ(std::count(points.begin(), points.end(), ','), 3) << points;
+    EXPECT_NE(svg.find("stroke=\"#d62728\""), std::string::npos);  // the flagged point
+}
+
+TEST(ReportSweep, KnobsCoverPrecisionSppBlockAndSize) {
+    const std::vector<Knob> knobs = reportKnobs();
+    ASSERT_EQ(knobs.size(), 4u);
+    EXPECT_EQ(knobs[0].name, "precision");
+    EXPECT_EQ(knobs[0].values, (std::vector<std::string>{"naive", "robust", "fp64"}));
+    ReportConfig c;
+    c.settings = {100, 50, 1};
+    knobs[0].apply(c, "fp64");
+    knobs[1].apply(c, "4");
+    knobs[2].apply(c, "2");
+    knobs[3].apply(c, "half");
+    EXPECT_EQ(c.precision, Precision::Fp64);
+    EXPECT_EQ(c.settings.spp, 4);
+    EXPECT_EQ(c.settings.block, 2);
+    EXPECT_EQ(c.settings.width, 50);
+    EXPECT_EQ(c.settings.height, 25);
+}
+
+TEST(ReportSweep, ErrorFallsWithSamplesGrowsWithBlockEveryPrecisionRuns) {
+    const Scene scene = loadScene(test::kSourceDir + "/scenes/shapes.sdl", {}, nullptr);
+    const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
+    SweepOptions options;
+    options.width = 48;
+    options.height = 36;
+    options.shaderDirectory = test::kShaderDir;
+    options.threads = 2;
+    const std::vector<SweepPoint> points = runSweep(scene, camera, test::gpuContext(), options, nullptr);
+    ASSERT_EQ(points.size(), 3u * 2u * 3u * 2u + 2u);  // every combination, then a reference per size
+    const auto find = [&](const std::string& precision, const std::string& spp, const std::string& block) {
+        const std::vector<std::string> values{"precision " + precision, "spp " + spp, "block " + block,
+                                              "size full"};
+        for (const SweepPoint& p : points)
+            if (p.values == values) return p;
+        ADD_FAILURE() << precision << " " << spp << " " << block;
+        return SweepPoint{};
+    };
+    // Against the 16-spp reference: the error is mostly aliasing; 4 samples
+    // per pixel lower it, one ray per 4x4 block raises it.
+    const SweepPoint robust = find("robust", "1", "1"), robust4spp = find("robust", "4", "1"),
+                     robust4block = find("robust", "1", "4");
+    ASSERT_TRUE(robust.ran && robust4spp.ran && robust4block.ran);
+    EXPECT_GT(robust.rmse, 0);
+    EXPECT_LT(robust4spp.rmse, 0.8 * robust.rmse);
+    EXPECT_GT(robust4block.rmse, 2 * robust.rmse);
+    EXPECT_GT(robust.seconds, 0);
+    // An easy scene: the precision modes trace the same samples to about the same colours.
+    const SweepPoint fp64 = find("fp64", "1", "1"), naive = find("naive", "1", "1");
+    ASSERT_TRUE(fp64.ran && naive.ran);
+    EXPECT_NEAR(fp64.rmse, robust.rmse, 1e-4);
+    EXPECT_NEAR(naive.rmse, robust.rmse, 1e-2);
+    EXPECT_EQ(points.back().note, "the reference");
+
+    const Report report = sweepReport("scenes/shapes.sdl", points, "test device");
+    EXPECT_EQ(report.table.rows.size(), points.size());
+    EXPECT_EQ(report.plots.size(), 4u);  // RMSE and max error, for each of two sizes
+    EXPECT_EQ(test::xmlProblem(toHtml(report)), "");
+}
+
+using NumericsCli = test::CliTest;
+
+TEST_F(NumericsCli, StressWritesTableCsvJsonHtml) {
+    test::RunResult run = test::vkray("stress --cases tiny --size 24x18 --cases-dir " +
+                                      test::kSourceDir + "/scenes/stress --out " + path("out"));
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("tiny_sphere  robust"), std::string::npos) << run.output;
+    const auto csv = test::parseCsv(readFile(dir / "out/stress.csv"));
+    EXPECT_EQ(csv.size(), 5u);  // header + naive, robust, fp64, double
+    EXPECT_NO_THROW(test::JsonReader(readFile(dir / "out/stress.json")).document());
+    EXPECT_EQ(test::xmlProblem(readFile(dir / "out/stress.html")), "");
+
+    EXPECT_NE(run.output.find("result: 4 of 4 rows as expected (PASS)"), std::string::npos) << run.output;
+
+    // fp64 on a device without doubles: the row says why it did not run.
+    test::RunResult noDoubles = test::vkray("stress --cases tiny --size 24x18 --precision fp64 --cases-dir " +
+                                                test::kSourceDir + "/scenes/stress --out " + path("nd"),
+                                            "VKRAY_FAULT=no-float64");
+    EXPECT_EQ(noDoubles.status, 0) << noDoubles.output;
+    EXPECT_NE(noDoubles.output.find("the device has no shaderFloat64"), std::string::npos) << noDoubles.output;
+    EXPECT_NE(noDoubles.output.find("result: 1 of 1 rows as expected (PASS)"), std::string::npos)  // double
+        << noDoubles.output;
+
+    // A case that claims to break naive but does not: exit 2, named.
+    fs::create_directories(dir / "cases");
+    std::ofstream(dir / "cases/easy.sdl")
+        << "! stress: a unit sphere at the origin\n! stiff: nothing\n! correct: t = 4 at the centre\n"
+           "! naive: fails\ncamera eye 0 0 5 look 0 0 0 fov 40\nlight 5 5 5 1 1 1\nsphere\n";
+    test::RunResult easy = test::vkray("stress --size 24x18 --cases-dir " + path("cases") + " --out " + path("easy"));
+    EXPECT_EQ(easy.status, 2) << easy.output;
+    EXPECT_NE(easy.output.find("unexpected: easy naive passes a case built to break it"), std::string::npos)
+        << easy.output;
+
+    test::RunResult none = test::vkray("stress --cases nothing-matches --cases-dir " +
+                                       test::kSourceDir + "/scenes/stress --out " + path("none"));
+    EXPECT_EQ(none.status, 1);
+    EXPECT_NE(none.output.find("no scene in"), std::string::npos) << none.output;
+    EXPECT_EQ(test::vkray("stress extra").status, 1);
+}
+
+TEST_F(NumericsCli, ReportWritesItsFilesAndNamesBadInput) {
+    const std::string s = scene("s.sdl", "camera eye 0 0 5\nlight 5 5 5 1 1 1\nsphere\n");
+    test::RunResult run = test::vkray("report " + s + " --size 24x18 --out " + path("rep"));
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("precision robust spp 1 block 1"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("precision fp64 spp 4 block 2"), std::string::npos) << run.output;
+    const auto csv = test::parseCsv(readFile(dir / "rep/report.csv"));
+    EXPECT_EQ(csv.size(), 1u + 36u + 2u);  // header, every configuration, a reference per size
+    EXPECT_EQ(test::xmlProblem(readFile(dir / "rep/report.html")), "");
+    test::RunResult robust = test::vkray("report " + s + " --size 24x18 --precision robust --out " + path("rob"));
+    ASSERT_EQ(robust.status, 0) << robust.output;
+    EXPECT_EQ(test::parseCsv(readFile(dir / "rob/report.csv")).size(), 1u + 12u + 2u);
+    EXPECT_EQ(robust.output.find("precision naive"), std::string::npos) << robust.output;
+    test::RunResult bad = test::vkray("report " + scene("bad.sdl", "sphere frobnicate\n") + " --out " + path("x"));
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_NE(bad.output.find("bad.sdl:1:8"), std::string::npos) << bad.output;
+    EXPECT_EQ(test::vkray("report").status, 1);
+}
+
+}  // namespace
+}  // namespace vkray::numerics
