@@ -1,11 +1,13 @@
 #include "app/commands.h"
 
+#include "app/features_report.h"
 #include "app/pixel_report.h"
 #include "app/progress.h"
 #include "app/watch.h"
 #include "gpu/context.h"
 #include "gpu/gpu_tracer.h"
 #include "gpu/shader_variant.h"
+#include "gpu/spirv_cache.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"
@@ -324,6 +326,18 @@ int runShadersCheck(const Options& o, std::ostream& out, std::ostream& err) {
     return failures ? 1 : 0;
 }
 
+// `vkray features`: the variant `render` would compile, and what it binds.
+int runFeatures(const Options& o, std::ostream& out, std::ostream& err) {
+    const Scene scene = loadSceneFor(o, err);
+    RenderSettings settings;
+    settings.spp = o.spp;
+    const gpu::ShaderFeatures features = gpu::featuresOf(scene, settings, o.allFeatures);
+    const gpu::Defines defines = gpu::definesFor(features, o.defines);
+    const std::string key = gpu::spirvCacheKey({shaderDirectory(o), "trace.comp", defines});
+    out << formatFeatureReport(scene, settings, features, defines, key);
+    return 0;
+}
+
 int runCompare(const Options& o, std::ostream& out) {
     const Image a = readImage(o.imageA), b = readImage(o.imageB);
     if (!o.diffPath.empty()) requireWritableFolder(o.diffPath, "--diff");
@@ -387,6 +401,7 @@ int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
     case Command::ShadersCheck: return runShadersCheck(o, out, err);
     case Command::Compare: return runCompare(o, out);
     case Command::Devices: return runDevices(out);
+    case Command::Features: return runFeatures(o, out, err);
     }
     return 1;
 }

@@ -144,6 +144,9 @@ bool accepts(Command command, const std::string& flag) {
                flag != "--all" && flag != "--spp" && flag != "--seed";
     case Command::Compare: return flag == "--diff" || flag == "--fail" || flag == "--failpercent";
     case Command::ShadersCheck: return flag == "--shader-dir" || flag == "--all";
+    case Command::Features:
+        return flag == "--lenient" || flag == "--variant" || flag == "--shader-dir" || flag == "-D" ||
+               flag == "--spp";
     default: return false;
     }
 }
@@ -159,6 +162,8 @@ std::string usageText() {
   vkray render SCENE.sdl [-o out.png] [options]   render on the GPU (or --cpu)
   vkray pixel SCENE.sdl X Y [options]             trace one pixel on GPU and CPU, side by side
   vkray compare A B [--ids A.id.pfm B.id.pfm] [--diff FILE] [--fail T] [--failpercent P]
+  vkray features SCENE.sdl [--variant all] [--spp N] [--lenient] [-D NAME=VALUE]
+                                                  the scene's features, shader variant and buffers
   vkray devices                                   list Vulkan devices
   vkray shaders check [--all] [--shader-dir DIR]  compile the shader variants
   vkray --version | --help
@@ -208,6 +213,7 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (verb == "pixel") o.command = Command::Pixel;
     else if (verb == "compare") o.command = Command::Compare;
     else if (verb == "devices") o.command = Command::Devices;
+    else if (verb == "features") o.command = Command::Features;
     else if (verb == "shaders" && args.size() > 1 && args[1] == "check") {
         o.command = Command::ShadersCheck;
         first = 2;
@@ -266,6 +272,10 @@ Options parseOptions(const std::vector<std::string>& args) {
             throw Error("pixel: (" + positional[1] + ", " + positional[2] + ") is outside the " +
                         std::to_string(o.width) + "x" + std::to_string(o.height) +
                         " image; pass --size or a smaller X Y");
+    } else if (o.command == Command::Features) {
+        if (positional.size() != 1)
+            throw Error("features: expected one scene file, e.g. `vkray features scenes/default.sdl`");
+        o.scenePath = positional[0];
     } else if (o.command == Command::Compare) {
         if (positional.size() != 2) throw Error("compare: expected two image files A B");
         o.imageA = positional[0];

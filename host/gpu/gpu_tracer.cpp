@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <time.h>
 
 namespace vkray::gpu {
 
@@ -31,6 +32,14 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// CPU time of the whole process, lavapipe's worker threads included: on a
+// machine shared with other work it stays about the work done.
+double processCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 template <typename T>
@@ -118,6 +127,12 @@ public:
             add(BINDING_PIXMAPS, makeBuffer(c, packed.pixmaps, Usage::eStorageBuffer));
             add(BINDING_TEXELS, makeBuffer(c, packed.texels, Usage::eStorageBuffer));
         }
+        // Exactly the variant's bindings (bindingsFor): no buffer uploaded for nothing.
+        const std::vector<ShaderBinding> bindings = bindingsFor(features);
+        if (bindings.size() != buffers_.size() ||
+            !std::all_of(bindings.begin(), bindings.end(),
+                         [&](const ShaderBinding& b) { return buffers_.count(b.binding) > 0; }))
+            throw Error("internal: the buffers uploaded differ from the variant's bindings");
 
         const std::array<vk::DescriptorPoolSize, 2> poolSizes{{
             {vk::DescriptorType::eUniformBuffer, 1},
@@ -221,17 +236,9 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     const auto bind = [&](uint binding, vk::DescriptorType type) {
         bindings.emplace_back(binding, type, 1, vk::ShaderStageFlagBits::eCompute);
     };
-    const auto storage = vk::DescriptorType::eStorageBuffer;
-    bind(BINDING_FRAME, vk::DescriptorType::eUniformBuffer);
-    for (uint binding : {BINDING_OBJECTS, BINDING_LIGHTS, BINDING_PIXELS}) bind(binding, storage);
-    if (features.debugPixel) bind(BINDING_DEBUG, storage);
-    if (features.objectBvh)
-        for (uint binding : {BINDING_OBJECT_NODES, BINDING_OBJECT_INDEX}) bind(binding, storage);
-    if (features.kinds[KIND_MESH])
-        for (uint binding : {BINDING_MESHES, BINDING_MESH_NODES, BINDING_TRIANGLES}) bind(binding, storage);
-    if (features.kinds[KIND_BOOLEAN]) bind(BINDING_CSG_NODES, storage);
-    if (features.has(Shading::Pixmaps))
-        for (uint binding : {BINDING_PIXMAPS, BINDING_TEXELS}) bind(binding, storage);
+    for (const ShaderBinding& b : bindingsFor(features))
+        bind(b.binding, b.uniform ? vk::DescriptorType::eUniformBuffer
+                                  : vk::DescriptorType::eStorageBuffer);
     p->setLayout = vk::raii::DescriptorSetLayout(c.device, {{}, bindings});
     const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0, sizeof(TileParams));
     p->layout = vk::raii::PipelineLayout(c.device, {{}, *p->setLayout, pushRange});
@@ -270,6 +277,7 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
 
     Frame frame(settings.width, settings.height);
     const auto renderStart = Clock::now();
+    const double renderCpuStart = processCpuSeconds();
     st.tiles = 0;
     st.rays = 0;
     const size_t totalRays = size_t((settings.width + block - 1) / block) *
@@ -298,6 +306,7 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
         }
     }
     st.renderSeconds = secondsSince(renderStart);
+    st.renderCpuSeconds = processCpuSeconds() - renderCpuStart;
     return frame;
 } catch (const vk::SystemError& failure) {
     explainVulkanFailure(failure, context_.device());

@@ -29,6 +29,7 @@ struct GpuRenderOptions {
 
 struct GpuRenderStats {
     double renderSeconds = 0;  // the dispatch loop, tiles read back included
+    double renderCpuSeconds = 0;  // CPU time of the process (all threads: lavapipe's too) in that loop
     double setupSeconds = 0;   // buffers, pipeline (shader compile excluded)
     CompiledShader shader;     // SPIR-V, key, cache hit, compile/load time
     std::string variant;       // describe(features), e.g. "sphere+cube"

@@ -79,6 +79,15 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines = 
 // ("+shadows+reflection", "+all shading"), "+bvh" and "+debug-pixel".
 std::string describe(const ShaderFeatures& features);
 
+// One descriptor (set 0) a variant declares: the host creates and uploads a
+// buffer for exactly these, and nothing else.
+struct ShaderBinding {
+    std::uint32_t binding;  // BINDING_* of shaders/layout.h
+    const char* name;       // "objects", "mesh nodes", ...
+    bool uniform;           // uniform buffer (else storage buffer)
+};
+std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features);
+
 // The variants `vkray shaders check` compiles, each with and without the
 // object BVH. Shapes without shading features: those of at most two kinds or
 // all but at most one, with the debug-pixel record for each kind alone and
