@@ -20,6 +20,7 @@ namespace vkray::gpu {
 // the same (lavapipe compiles SPIR-V to machine code at pipeline creation).
 struct Pipeline {
     std::string key;
+    uint workgroupX = WORKGROUP_X, workgroupY = WORKGROUP_Y;  // trace.comp's local size
     vk::raii::DescriptorSetLayout setLayout = nullptr;
     vk::raii::PipelineLayout layout = nullptr;
     vk::raii::ShaderModule module = nullptr;
@@ -171,8 +172,8 @@ public:
                                      nullptr);
         commands_.pushConstants<TileParams>(*pipeline_.layout, vk::ShaderStageFlagBits::eCompute,
                                             0, tileParams);
-        commands_.dispatch((raysX + WORKGROUP_X - 1) / WORKGROUP_X,
-                           (raysY + WORKGROUP_Y - 1) / WORKGROUP_Y, 1);
+        const uint groupX = pipeline_.workgroupX, groupY = pipeline_.workgroupY;
+        commands_.dispatch((raysX + groupX - 1) / groupX, (raysY + groupY - 1) / groupY, 1);
         // Shader writes must be visible to the host before the read-back.
         vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
         commands_.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
@@ -223,8 +224,13 @@ GpuTracer::GpuTracer(Context& context, GpuRenderOptions options)
 GpuTracer::~GpuTracer() = default;
 
 const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRenderStats& stats) {
-    const ShaderSource source{options_.shaderDirectory, "trace.comp",
-                              definesFor(features, options_.userDefines)};
+    ShaderSource source{options_.shaderDirectory, "trace.comp",
+                        definesFor(features, options_.userDefines)};
+    const bool otherWorkgroup = options_.workgroupX > 0 && options_.workgroupY > 0;
+    if (otherWorkgroup) {
+        source.defines.emplace_back("VKRAY_WORKGROUP_X", std::to_string(options_.workgroupX));
+        source.defines.emplace_back("VKRAY_WORKGROUP_Y", std::to_string(options_.workgroupY));
+    }
     stats.shader = loadOrCompile(source);
     stats.variant = describe(features);
     if (pipeline_ && pipeline_->key == stats.shader.key) return *pipeline_;
@@ -232,6 +238,10 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     Context::Impl& c = context_.impl();
     auto p = std::make_unique<Pipeline>();
     p->key = stats.shader.key;
+    if (otherWorkgroup) {
+        p->workgroupX = uint(options_.workgroupX);
+        p->workgroupY = uint(options_.workgroupY);
+    }
     std::vector<vk::DescriptorSetLayoutBinding> bindings;
     const auto bind = [&](uint binding, vk::DescriptorType type) {
         bindings.emplace_back(binding, type, 1, vk::ShaderStageFlagBits::eCompute);
@@ -271,7 +281,8 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
     const int side = std::max(std::min(16, options_.tileSize),
                               options_.tileSize / int(std::ceil(std::sqrt(double(settings.spp)))));
     const int tile = fitTileSide(std::max(block, side / block * block), block, sizeof(GpuPixel),
-                                 WORKGROUP_X, WORKGROUP_Y, deviceLimits(context_.device()));
+                                 pipeline.workgroupX, pipeline.workgroupY,
+                                 deviceLimits(context_.device()));
     TracePass pass(context_.impl(), pipeline, features, scene, camera, settings, tile);
     st.setupSeconds = secondsSince(setupStart) - st.shader.seconds;
 
@@ -283,8 +294,13 @@ Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
     const size_t totalRays = size_t((settings.width + block - 1) / block) *
                              size_t((settings.height + block - 1) / block);
     if (progress && !progress(0, totalRays)) throw Interrupted();
+    const int tilesX = (settings.width + tile - 1) / tile;
     for (int ty = 0; ty < settings.height; ty += tile) {
-        for (int tx = 0; tx < settings.width; tx += tile) {
+        for (int column = 0; column < tilesX; ++column) {
+            // Serpentine: every other row of tiles right to left, so that
+            // consecutive tiles are neighbours (benchmarks compare).
+            const bool back = options_.serpentineTiles && (ty / tile) % 2 == 1;
+            const int tx = (back ? tilesX - 1 - column : column) * tile;
             const int w = std::min(tile, settings.width - tx);
             const int h = std::min(tile, settings.height - ty);
             pass.dispatchTile(tx, ty, w, h, block);

@@ -25,6 +25,10 @@ struct GpuRenderOptions {
     bool allFeatures = false;  // compile every shape in, whatever the scene uses
     int tileSize = 256;        // pixels per tile side (rounded to a multiple of the block)
     Defines userDefines;       // -D NAME=VALUE, after the variant's own
+    // trace.comp's workgroup size; 0: layout.h's WORKGROUP_X x WORKGROUP_Y.
+    // Other shapes are for benchmarks (vkray_bench --workgroup).
+    int workgroupX = 0, workgroupY = 0;
+    bool serpentineTiles = false;  // tile rows alternately right to left (else all left to right)
 };
 
 struct GpuRenderStats {

@@ -6,6 +6,10 @@
 bool sphereSpan(vec3 o, vec3 d, out float t0, out vec3 n0, out float t1, out vec3 n1) {
     float a = dot(d, d);
     float b = dot(o, d);  // half of the textbook b
+#if VKRAY_SPHERE_EARLY_OUT
+    // Benchmark experiment (BENCHMARKS.md): origin outside, moving away.
+    if (b > 0.0 && dot(o, o) > 1.0) return false;
+#endif
     vec3 fPerp = o - (b / a) * d;
     float disc = a * (1.0 - dot(fPerp, fPerp));
     if (disc < 0.0) return false;
