@@ -8,7 +8,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
   glslang-dev glslang-tools spirv-tools
   libglm-dev libstb-dev
-  libgtest-dev libbenchmark-dev
+  libgtest-dev
   clang libclang-rt-dev  # scripts/fuzz.sh: clang and its libFuzzer/sanitizer runtimes
   libopenmpi-dev openmpi-bin  # rendering across MPI ranks (README "Across machines")
 )

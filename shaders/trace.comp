@@ -20,7 +20,12 @@
 #endif
 #include "precision.glsl"
 
+// Benchmarks try other shapes (GpuRenderOptions::workgroupX/Y).
+#ifdef VKRAY_WORKGROUP_X
+layout(local_size_x = VKRAY_WORKGROUP_X, local_size_y = VKRAY_WORKGROUP_Y, local_size_z = 1) in;
+#else
 layout(local_size_x = WORKGROUP_X, local_size_y = WORKGROUP_Y, local_size_z = 1) in;
+#endif
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform FrameBlock { FrameParams frame; };
 layout(std430, set = 0, binding = BINDING_OBJECTS) readonly buffer ObjectBlock { GpuObject objects[]; };

@@ -1,5 +1,6 @@
 #include "app/commands.h"
 
+#include "app/features_report.h"
 #include "app/pixel_report.h"
 #include "app/progress.h"
 #include "app/stress_command.h"
@@ -9,6 +10,7 @@
 #include "gpu/context.h"
 #include "gpu/gpu_tracer.h"
 #include "gpu/shader_variant.h"
+#include "gpu/spirv_cache.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"
@@ -370,6 +372,20 @@ int runShadersCheck(const Options& o, std::ostream& out, std::ostream& err) {
     return failures ? 1 : 0;
 }
 
+// `vkray features`: the variant `render` would compile, and what it binds.
+int runFeatures(const Options& o, std::ostream& out, std::ostream& err) {
+    const Scene scene = loadSceneFor(o, err);
+    RenderSettings settings;
+    settings.spp = o.spp;
+    const gpu::ShaderFeatures features =
+        gpu::variantFeatures(scene, settings, o.allFeatures, o.precision);
+    const gpu::ShaderSource source =
+        gpu::variantSource(shaderDirectory(o), features, o.precision, o.defines);
+    out << formatFeatureReport(scene, settings, features, o.precision, source.defines,
+                               gpu::spirvCacheKey(source));
+    return 0;
+}
+
 int runCompare(const Options& o, std::ostream& out) {
     const Image a = readImage(o.imageA), b = readImage(o.imageB);
     if (!o.diffPath.empty()) requireWritableFolder(o.diffPath, "--diff");
@@ -441,6 +457,7 @@ int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
     case Command::Devices: return runDevices(out);
     case Command::Stress: return runStress(o, out, err);
     case Command::Report: return runReport(o, out, err);
+    case Command::Features: return runFeatures(o, out, err);
     }
     return 1;
 }
@@ -473,7 +490,8 @@ int vkrayMain(int argc, char** argv) {
     // others would otherwise wait for it for ever.
     const dist::World& world = dist::World::current();
     if (world.distributed()) {
-        std::cerr << "[" << world.describeRank() << "] " << message;
+        // One write: mpirun interleaves the ranks' output write by write.
+        std::cerr << "[" + world.describeRank() + "] " + message << std::flush;
         world.abort(status);
     }
     std::cerr << message;

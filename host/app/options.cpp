@@ -160,6 +160,9 @@ bool accepts(Command command, const std::string& flag) {
                flag == "--eye" || flag == "--look" || flag == "--up" || flag == "--fov";
     case Command::Compare: return flag == "--diff" || flag == "--fail" || flag == "--failpercent";
     case Command::ShadersCheck: return flag == "--shader-dir" || flag == "--all" || flag == "--precision";
+    case Command::Features:
+        return flag == "--lenient" || flag == "--variant" || flag == "--shader-dir" || flag == "-D" ||
+               flag == "--spp" || flag == "--precision";
     default: return false;
     }
 }
@@ -177,6 +180,8 @@ std::string usageText() {
   vkray compare A B [--ids A.id.pfm B.id.pfm] [--diff FILE] [--fail T] [--failpercent P]
   vkray stress [--cases PATTERN] [--size WxH] [--out DIR]   precision modes against the oracle
   vkray report SCENE.sdl [--size WxH] [--out DIR]          error against run time over the knobs
+  vkray features SCENE.sdl [--variant all] [--spp N] [--lenient] [-D NAME=VALUE]
+                                                  the scene's features, shader variant and buffers
   vkray devices                                   list Vulkan devices
   vkray shaders check [--all] [--shader-dir DIR]  compile the shader variants
   vkray --version | --help
@@ -235,6 +240,7 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (verb == "devices") o.command = Command::Devices;
     else if (verb == "stress") o.command = Command::Stress;
     else if (verb == "report") o.command = Command::Report;
+    else if (verb == "features") o.command = Command::Features;
     else if (verb == "shaders" && args.size() > 1 && args[1] == "check") {
         o.command = Command::ShadersCheck;
         first = 2;
@@ -298,6 +304,10 @@ Options parseOptions(const std::vector<std::string>& args) {
     } else if (o.command == Command::Report) {
         if (positional.size() != 1)
             throw Error("report: expected one scene file, e.g. `vkray report scenes/default.sdl`");
+        o.scenePath = positional[0];
+    } else if (o.command == Command::Features) {
+        if (positional.size() != 1)
+            throw Error("features: expected one scene file, e.g. `vkray features scenes/default.sdl`");
         o.scenePath = positional[0];
     } else if (o.command == Command::Compare) {
         if (positional.size() != 2) throw Error("compare: expected two image files A B");

@@ -15,7 +15,7 @@
 
 namespace vkray {
 
-enum class Command { Help, Version, Render, Pixel, Compare, Devices, ShadersCheck, Stress, Report };
+enum class Command { Help, Version, Render, Pixel, Compare, Devices, ShadersCheck, Stress, Report, Features };
 
 // The largest image vkray renders: each side at most kMaxRenderSide and at
 // most kMaxRenderPixels in all (a Frame costs 32 bytes a pixel on the host).

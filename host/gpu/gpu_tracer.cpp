@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <time.h>
 
 namespace vkray::gpu {
 
@@ -19,6 +20,7 @@ namespace vkray::gpu {
 // the same (lavapipe compiles SPIR-V to machine code at pipeline creation).
 struct Pipeline {
     std::string key;
+    uint workgroupX = WORKGROUP_X, workgroupY = WORKGROUP_Y;  // trace.comp's local size
     vk::raii::DescriptorSetLayout setLayout = nullptr;
     vk::raii::PipelineLayout layout = nullptr;
     vk::raii::ShaderModule module = nullptr;
@@ -31,6 +33,14 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// CPU time of the whole process, lavapipe's worker threads included: on a
+// machine shared with other work it stays about the work done.
+double processCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 template <typename T>
@@ -126,6 +136,12 @@ public:
                                                   Usage::eStorageBuffer));
             add(BINDING_DOUBLE_OBJECTS, makeBuffer(c, packed.doubleObjects, Usage::eStorageBuffer));
         }
+        // Exactly the variant's bindings (bindingsFor): no buffer uploaded for nothing.
+        const std::vector<ShaderBinding> bindings = bindingsFor(features);
+        if (bindings.size() != buffers_.size() ||
+            !std::all_of(bindings.begin(), bindings.end(),
+                         [&](const ShaderBinding& b) { return buffers_.count(b.binding) > 0; }))
+            throw Error("internal: the buffers uploaded differ from the variant's bindings");
 
         const std::array<vk::DescriptorPoolSize, 2> poolSizes{{
             {vk::DescriptorType::eUniformBuffer, 1},
@@ -164,8 +180,8 @@ public:
                                      nullptr);
         commands_.pushConstants<TileParams>(*pipeline_.layout, vk::ShaderStageFlagBits::eCompute,
                                             0, tileParams);
-        commands_.dispatch((raysX + WORKGROUP_X - 1) / WORKGROUP_X,
-                           (raysY + WORKGROUP_Y - 1) / WORKGROUP_Y, 1);
+        const uint groupX = pipeline_.workgroupX, groupY = pipeline_.workgroupY;
+        commands_.dispatch((raysX + groupX - 1) / groupX, (raysY + groupY - 1) / groupY, 1);
         // Shader writes must be visible to the host before the read-back.
         vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
         commands_.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
@@ -218,6 +234,20 @@ void requirePrecisionSupported(Precision precision, const DeviceInfo& device) {
                     "double CPU reference");
 }
 
+ShaderFeatures variantFeatures(const Scene& scene, const RenderSettings& settings,
+                               bool allFeatures, Precision precision) {
+    ShaderFeatures features = featuresOf(scene, settings, allFeatures);
+    features.doubles = precision == Precision::Fp64;
+    return features;
+}
+
+ShaderSource variantSource(const std::string& shaderDirectory, const ShaderFeatures& features,
+                           Precision precision, const Defines& userDefines) {
+    Defines defines = precisionDefines(precision);
+    defines.insert(defines.end(), userDefines.begin(), userDefines.end());
+    return {shaderDirectory, "trace.comp", definesFor(features, defines)};
+}
+
 GpuTracer::GpuTracer(Context& context, GpuRenderOptions options)
     : context_(context), options_(std::move(options)) {}
 
@@ -225,9 +255,13 @@ GpuTracer::~GpuTracer() = default;
 
 const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRenderStats& stats) {
     requirePrecisionSupported(options_.precision, context_.device());
-    Defines defines = precisionDefines(options_.precision);
-    defines.insert(defines.end(), options_.userDefines.begin(), options_.userDefines.end());
-    const ShaderSource source{options_.shaderDirectory, "trace.comp", definesFor(features, defines)};
+    ShaderSource source =
+        variantSource(options_.shaderDirectory, features, options_.precision, options_.userDefines);
+    const bool otherWorkgroup = options_.workgroupX > 0 && options_.workgroupY > 0;
+    if (otherWorkgroup) {
+        source.defines.emplace_back("VKRAY_WORKGROUP_X", std::to_string(options_.workgroupX));
+        source.defines.emplace_back("VKRAY_WORKGROUP_Y", std::to_string(options_.workgroupY));
+    }
     stats.shader = loadOrCompile(source);
     stats.variant = describe(features);
     if (pipeline_ && pipeline_->key == stats.shader.key) return *pipeline_;
@@ -235,23 +269,17 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     Context::Impl& c = context_.impl();
     auto p = std::make_unique<Pipeline>();
     p->key = stats.shader.key;
+    if (otherWorkgroup) {
+        p->workgroupX = uint(options_.workgroupX);
+        p->workgroupY = uint(options_.workgroupY);
+    }
     std::vector<vk::DescriptorSetLayoutBinding> bindings;
     const auto bind = [&](uint binding, vk::DescriptorType type) {
         bindings.emplace_back(binding, type, 1, vk::ShaderStageFlagBits::eCompute);
     };
-    const auto storage = vk::DescriptorType::eStorageBuffer;
-    bind(BINDING_FRAME, vk::DescriptorType::eUniformBuffer);
-    for (uint binding : {BINDING_OBJECTS, BINDING_LIGHTS, BINDING_PIXELS}) bind(binding, storage);
-    if (features.debugPixel) bind(BINDING_DEBUG, storage);
-    if (features.objectBvh)
-        for (uint binding : {BINDING_OBJECT_NODES, BINDING_OBJECT_INDEX}) bind(binding, storage);
-    if (features.kinds[KIND_MESH])
-        for (uint binding : {BINDING_MESHES, BINDING_MESH_NODES, BINDING_TRIANGLES}) bind(binding, storage);
-    if (features.kinds[KIND_BOOLEAN]) bind(BINDING_CSG_NODES, storage);
-    if (features.has(Shading::Pixmaps))
-        for (uint binding : {BINDING_PIXMAPS, BINDING_TEXELS}) bind(binding, storage);
-    if (options_.precision == Precision::Fp64)
-        for (uint binding : {BINDING_DOUBLE_CAMERA, BINDING_DOUBLE_OBJECTS}) bind(binding, storage);
+    for (const ShaderBinding& b : bindingsFor(features))
+        bind(b.binding, b.uniform ? vk::DescriptorType::eUniformBuffer
+                                  : vk::DescriptorType::eStorageBuffer);
     p->setLayout = vk::raii::DescriptorSetLayout(c.device, {{}, bindings});
     const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0, sizeof(TileParams));
     p->layout = vk::raii::PipelineLayout(c.device, {{}, *p->setLayout, pushRange});
@@ -278,7 +306,8 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
     const auto setupStart = Clock::now();
     if (settings.spp < 1 || settings.spp > kMaxSpp)
         throw Error("render: samples per pixel must be from 1 to " + std::to_string(kMaxSpp));
-    const ShaderFeatures features = featuresOf(scene, settings, options_.allFeatures);
+    const ShaderFeatures features =
+        variantFeatures(scene, settings, options_.allFeatures, options_.precision);
     const Pipeline& pipeline = pipelineFor(features, st);
     // Tiles hold whole blocks, so a block never straddles two dispatches;
     // they shrink with the samples per pixel, so that no dispatch runs long,
@@ -287,19 +316,21 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
     const int side = std::max(std::min(16, options_.tileSize),
                               options_.tileSize / int(std::ceil(std::sqrt(double(settings.spp)))));
     const int tile = fitTileSide(std::max(block, side / block * block), block, sizeof(GpuPixel),
-                                 WORKGROUP_X, WORKGROUP_Y, deviceLimits(context_.device()));
-    TracePass pass(context_.impl(), pipeline, features, options_.precision == Precision::Fp64, scene,
+                                 pipeline.workgroupX, pipeline.workgroupY,
+                                 deviceLimits(context_.device()));
+    TracePass pass(context_.impl(), pipeline, features, features.doubles, scene,
                    camera, settings, tile);
     st.setupSeconds = secondsSince(setupStart) - st.shader.seconds;
 
     Frame frame(settings.width, settings.height);
     const auto renderStart = Clock::now();
+    const double renderCpuStart = processCpuSeconds();
     st.tiles = 0;
     st.rays = 0;
     const size_t totalRays = size_t((settings.width + block - 1) / block) *
                              size_t((settings.height + block - 1) / block) * size_t(settings.spp);
     if (progress && !progress(0, totalRays)) throw Interrupted();
-    AllTilesInRows everyTile;
+    AllTilesInRows everyTile(options_.serpentineTiles);
     TileSchedule& tiles = schedule ? *schedule : everyTile;
     tiles.plan(settings.width, settings.height, tile);
     while (const std::optional<TileRect> given = tiles.next()) {
@@ -328,6 +359,7 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
         tiles.finished(*given, frame);
     }
     st.renderSeconds = secondsSince(renderStart);
+    st.renderCpuSeconds = processCpuSeconds() - renderCpuStart;
     return frame;
 } catch (const vk::SystemError& failure) {
     explainVulkanFailure(failure, context_.device());
@@ -348,11 +380,12 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
     // The debug record describes one ray: the pixel's centre, one sample.
     RenderSettings oneSample = settings;
     oneSample.spp = 1;
-    ShaderFeatures features = featuresOf(scene, oneSample, options_.allFeatures);
+    ShaderFeatures features =
+        variantFeatures(scene, oneSample, options_.allFeatures, options_.precision);
     features.shading[size_t(Shading::Antialias)] = false;
     features.debugPixel = true;
     const Pipeline& pipeline = pipelineFor(features, st);
-    TracePass pass(context_.impl(), pipeline, features, options_.precision == Precision::Fp64, scene,
+    TracePass pass(context_.impl(), pipeline, features, features.doubles, scene,
                    camera, oneSample, 1);
     // A one-pixel tile at the corner of the pixel's block: its one ray is the block's.
     const int block = std::max(settings.block, 1);

@@ -29,16 +29,28 @@ struct GpuRenderOptions {
     Defines userDefines;       // -D NAME=VALUE, after the variant's own
     // numerics/precision.h: the mode's defines and host-side scene preparation.
     Precision precision = Precision::Robust;
+    // trace.comp's workgroup size; 0: layout.h's WORKGROUP_X x WORKGROUP_Y.
+    // Other shapes are for benchmarks (vkray_bench --workgroup).
+    int workgroupX = 0, workgroupY = 0;
+    bool serpentineTiles = false;  // tile rows alternately right to left (else all left to right)
 };
 
 struct GpuRenderStats {
     double renderSeconds = 0;  // the dispatch loop, tiles read back included
+    double renderCpuSeconds = 0;  // CPU time of the process (all threads: lavapipe's too) in that loop
     double setupSeconds = 0;   // buffers, pipeline (shader compile excluded)
     CompiledShader shader;     // SPIR-V, key, cache hit, compile/load time
     std::string variant;       // describe(features), e.g. "sphere+cube"
     std::size_t tiles = 0;
     std::size_t rays = 0;      // primary rays traced
 };
+
+// The variant a render of `scene` uses, and its source: what render
+// compiles and `vkray features` reports (the same SPIR-V cache key).
+ShaderFeatures variantFeatures(const Scene& scene, const RenderSettings& settings,
+                               bool allFeatures, Precision precision);
+ShaderSource variantSource(const std::string& shaderDirectory, const ShaderFeatures& features,
+                           Precision precision, const Defines& userDefines);
 
 struct Pipeline;
 

@@ -110,6 +110,35 @@ std::string describe(const ShaderFeatures& features) {
     return text;
 }
 
+std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
+    // The same conditions as the #if around each binding in trace.comp and
+    // shapes/*.glsl (the test ShaderVariant.BindingsMatchTheSpirv checks).
+    std::vector<ShaderBinding> bindings{{BINDING_FRAME, "frame", true},
+                                        {BINDING_OBJECTS, "objects", false},
+                                        {BINDING_LIGHTS, "lights", false},
+                                        {BINDING_PIXELS, "pixels", false}};
+    if (features.debugPixel) bindings.push_back({BINDING_DEBUG, "debug record", false});
+    if (features.objectBvh) {
+        bindings.push_back({BINDING_OBJECT_NODES, "object BVH nodes", false});
+        bindings.push_back({BINDING_OBJECT_INDEX, "object BVH index", false});
+    }
+    if (features.kinds[KIND_MESH]) {
+        bindings.push_back({BINDING_MESHES, "meshes", false});
+        bindings.push_back({BINDING_MESH_NODES, "mesh BVH nodes", false});
+        bindings.push_back({BINDING_TRIANGLES, "triangles", false});
+    }
+    if (features.kinds[KIND_BOOLEAN]) bindings.push_back({BINDING_CSG_NODES, "CSG nodes", false});
+    if (features.has(Shading::Pixmaps)) {
+        bindings.push_back({BINDING_PIXMAPS, "pixmaps", false});
+        bindings.push_back({BINDING_TEXELS, "texels", false});
+    }
+    if (features.doubles) {
+        bindings.push_back({BINDING_DOUBLE_CAMERA, "camera in double", false});
+        bindings.push_back({BINDING_DOUBLE_OBJECTS, "objects' M^-1 in double", false});
+    }
+    return bindings;
+}
+
 std::vector<ShaderFeatures> allVariants(bool everyCombination) {
     std::vector<ShaderFeatures> variants;
     const unsigned kinds = unsigned(kGpuKinds.size());

@@ -62,6 +62,7 @@ struct ShaderFeatures {
     std::array<bool, kGpuShading.size()> shading{};  // indexed by Shading
     bool objectBvh = false;   // objects found through a BVH
     bool debugPixel = false;  // `vkray pixel`: the shader writes a trace record
+    bool doubles = false;     // --precision fp64: camera and M^-1 read in double
 
     bool has(Shading s) const { return shading[size_t(s)]; }
     bool operator==(const ShaderFeatures&) const = default;
@@ -78,6 +79,15 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines = 
 // "sphere+cube", "all shapes", "no shapes", then the shading features
 // ("+shadows+reflection", "+all shading"), "+bvh" and "+debug-pixel".
 std::string describe(const ShaderFeatures& features);
+
+// One descriptor (set 0) a variant declares: the host creates and uploads a
+// buffer for exactly these, and nothing else.
+struct ShaderBinding {
+    std::uint32_t binding;  // BINDING_* of shaders/layout.h
+    const char* name;       // "objects", "mesh nodes", ...
+    bool uniform;           // uniform buffer (else storage buffer)
+};
+std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features);
 
 // The variants `vkray shaders check` compiles, each with and without the
 // object BVH. Shapes without shading features: those of at most two kinds or

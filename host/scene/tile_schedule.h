@@ -3,6 +3,7 @@
 // hands tiles out across the ranks instead (host/dist/distributed_render.*).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -17,13 +18,18 @@ struct TileRect {
 };
 
 // The tiles of a width x height image, `side` pixels square (the last row and
-// column smaller), top to bottom, left to right.
-inline std::vector<TileRect> tilesOf(int width, int height, int side) {
+// column smaller), top to bottom, left to right; `serpentine`: every other
+// row right to left, so that consecutive tiles are neighbours (a benchmark
+// experiment, BENCHMARKS.md).
+inline std::vector<TileRect> tilesOf(int width, int height, int side, bool serpentine = false) {
     std::vector<TileRect> tiles;
-    for (int y = 0; y < height; y += side)
+    for (int y = 0, row = 0; y < height; y += side, ++row) {
+        const std::size_t rowStart = tiles.size();
         for (int x = 0; x < width; x += side)
             tiles.push_back({x, y, side < width - x ? side : width - x,
                              side < height - y ? side : height - y});
+        if (serpentine && row % 2 == 1) std::reverse(tiles.begin() + long(rowStart), tiles.end());
+    }
     return tiles;
 }
 
@@ -43,8 +49,9 @@ public:
 // Every tile, in tilesOf's order: the one-process schedule.
 class AllTilesInRows final : public TileSchedule {
 public:
+    explicit AllTilesInRows(bool serpentine = false) : serpentine_(serpentine) {}
     void plan(int width, int height, int tileSide) override {
-        tiles_ = tilesOf(width, height, tileSide);
+        tiles_ = tilesOf(width, height, tileSide, serpentine_);
         nextIndex_ = 0;
     }
     std::optional<TileRect> next() override {
@@ -54,6 +61,7 @@ public:
     void finished(const TileRect&, const Frame&) override {}
 
 private:
+    bool serpentine_;
     std::vector<TileRect> tiles_;
     std::size_t nextIndex_ = 0;
 };

@@ -34,6 +34,10 @@ bool sphereSpan(rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real t1, out rv
 bool sphereSpan(rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real t1, out rvec3 n1) {
     real a = dot(d, d);
     real b = dot(o, d);  // half of the textbook b
+#if VKRAY_SPHERE_EARLY_OUT
+    // Benchmark experiment (BENCHMARKS.md): origin outside, moving away.
+    if (b > 0.0 && dot(o, o) > 1.0) return false;
+#endif
     rvec3 fPerp = o - (b / a) * d;
     fPerp -= (dot(fPerp, d) / a) * d;
     real disc = a * (1.0 - dot(fPerp, fPerp));

@@ -1,0 +1,602 @@
+// vkray's benchmark harness (issue #7): primary rays per second on the same
+// scenes, rays and cores for
+//   - the GPU tracer (lavapipe here) with the scene's specialised variant,
+//   - the same with the all-features variant,
+//   - the CPU reference (double precision, with shading),
+//   - Embree 3 (closest hit only), one ray at a time and in 8-ray packets,
+// side by side in one run, as a Markdown table; then lavapipe's FMA peak and
+// the fraction of it the ray-sphere loop reaches. See BENCHMARKS.md.
+//
+//   LP_NUM_THREADS=2 build/vkray_bench [--size WxH] [--scenes a,b,...] ...
+// (--help lists the options and scenes). Not a test: built with
+// -DVKRAY_BENCHMARKS=ON; Embree only where CMake finds it.
+#include "bench/bench_scenes.h"
+#include "bench/fma_peak.h"
+#if VKRAY_HAVE_EMBREE
+#include "bench/embree_tracer.h"
+#endif
+#include "gpu/context.h"
+#include "gpu/gpu_tracer.h"
+#include "reference/reference_tracer.h"
+#include "scene/camera.h"
+#include "scene/error.h"
+#include "scene/scene_geometry.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <time.h>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+namespace {
+
+using namespace vkray;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+struct BenchScene {
+    std::string name;
+    std::string description;
+    std::function<Scene()> make;
+    bool sphereOnly = false;
+};
+
+std::vector<BenchScene> knownScenes() {
+    const std::string source = VKRAY_SOURCE_DIR;
+    std::vector<BenchScene> scenes;
+    for (int n : {1, 10, 16, 256, 1000, 10000, 100000}) {
+        const std::string count = n >= 1000 ? std::to_string(n / 1000) + "k" : std::to_string(n);
+        scenes.push_back({"spheres" + count, std::to_string(n) + " spheres",
+                          [n] { return bench::randomSpheres(n); }, true});
+    }
+    scenes.push_back({"castle", "castle.dat (corpus)",
+                      [source] { return bench::sdlScene(source + "/../shared/sdl-corpus/castle.dat"); }});
+    scenes.push_back({"mesh", "UV sphere, 1002528 triangles", [] { return bench::uvSphereMesh(708); }});
+    scenes.push_back({"default", "scenes/default.sdl",
+                      [source] { return bench::sdlScene(source + "/scenes/default.sdl"); }});
+    return scenes;
+}
+
+const char* kDefaultScenes =
+    "spheres1,spheres10,spheres16,spheres256,spheres1k,spheres10k,spheres100k,castle,mesh";
+
+struct Options {
+    std::vector<BenchScene> scenes;
+    int width = 1920, height = 1080;
+    int repeat = 2;
+    int threads = 2;
+    int tile = gpu::GpuRenderOptions{}.tileSize;
+    std::string shaderDirectory = VKRAY_BINARY_DIR "/shaders";
+    int allWidth = 0, allHeight = 0;  // the all-features variant's image; 0: --size
+    bool all = true, cpu = true, embree = true, fma = true;
+    bool shaded = false;  // keep lights and secondary rays
+    bool experiments = false, onlyExperiments = false;  // the tuning table (BENCHMARKS.md)
+};
+
+[[noreturn]] void usage(const std::string& message, int status = 1) {
+    std::string names;
+    for (const BenchScene& scene : knownScenes()) names += (names.empty() ? "" : ", ") + scene.name;
+    std::fprintf(status ? stderr : stdout,
+                 "%s%susage: vkray_bench [--scenes a,b,...] [--scene FILE.sdl] [--size WxH] "
+                 "[--repeat N] [--threads N] [--tile N] [--shader-dir DIR] [--all-size WxH] "
+                 "[--shaded] [--no-all] [--no-cpu] [--no-embree] [--no-fma] [--experiments] "
+                 "[--only-experiments]\n"
+                 "scenes: %s\ndefault list: %s\n"
+                 "--shaded keeps the scenes' lights and secondary rays (default: primary rays "
+                 "only, the same rays for every engine)\n"
+                 "--experiments adds the tuning table: workgroup shapes, tile sizes and order, "
+                 "an early-out (--only-experiments: that table alone)\n",
+                 message.empty() ? "" : "vkray_bench: ", message.empty() ? "" : (message + "\n").c_str(),
+                 names.c_str(), kDefaultScenes);
+    std::exit(status);
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    std::string names = kDefaultScenes;
+    std::vector<std::string> files;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        const auto value = [&]() -> std::string {
+            if (i + 1 >= argc) usage(arg + " expects a value");
+            return argv[++i];
+        };
+        if (arg == "--help" || arg == "-h") usage("", 0);
+        else if (arg == "--scenes") names = value();
+        else if (arg == "--scene") files.push_back(value());
+        else if (arg == "--size") {
+            if (std::sscanf(value().c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 1 ||
+                o.height < 1 || o.width > 16384 || o.height > 16384)
+                usage("--size expects WxH, each side 1 .. 16384");
+        } else if (arg == "--repeat") o.repeat = std::clamp(std::atoi(value().c_str()), 1, 100);
+        else if (arg == "--threads") o.threads = std::clamp(std::atoi(value().c_str()), 1, 1024);
+        else if (arg == "--shader-dir") o.shaderDirectory = value();
+        else if (arg == "--tile") o.tile = std::clamp(std::atoi(value().c_str()), 8, 16384);
+        else if (arg == "--all-size") {
+            if (std::sscanf(value().c_str(), "%dx%d", &o.allWidth, &o.allHeight) != 2 ||
+                o.allWidth < 1 || o.allHeight < 1 || o.allWidth > 16384 || o.allHeight > 16384)
+                usage("--all-size expects WxH, each side 1 .. 16384");
+        } else if (arg == "--no-all") o.all = false;
+        else if (arg == "--no-cpu") o.cpu = false;
+        else if (arg == "--no-embree") o.embree = false;
+        else if (arg == "--no-fma") o.fma = false;
+        else if (arg == "--shaded") o.shaded = true;
+        else if (arg == "--experiments") o.experiments = true;
+        else if (arg == "--only-experiments") o.experiments = o.onlyExperiments = true;
+        else usage("unknown option " + arg);
+    }
+    if (o.allWidth == 0) {
+        o.allWidth = o.width;
+        o.allHeight = o.height;
+    }
+    if (!files.empty() && names == kDefaultScenes) names.clear();
+    std::istringstream list(names);
+    const std::vector<BenchScene> known = knownScenes();
+    for (std::string name; std::getline(list, name, ',');) {
+        if (name.empty()) continue;
+        auto it = std::find_if(known.begin(), known.end(), [&](const auto& s) { return s.name == name; });
+        if (it == known.end()) usage("unknown scene '" + name + "'");
+        o.scenes.push_back(*it);
+    }
+    for (const std::string& file : files)
+        o.scenes.push_back({file, file, [file] { return bench::sdlScene(file); }});
+    return o;
+}
+
+std::string loadAverage() {
+    std::ifstream file("/proc/loadavg");
+    std::string one, five, fifteen;
+    file >> one >> five >> fifteen;
+    return one + " " + five + " " + fifteen;
+}
+
+std::string cpuModel() {
+    std::ifstream info("/proc/cpuinfo");
+    for (std::string line; std::getline(info, line);)
+        if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+    return "unknown CPU";
+}
+
+double agreement(const std::vector<int>& a, const std::vector<std::int32_t>& b) {
+    size_t same = 0;
+    for (size_t i = 0; i < a.size(); ++i) same += a[i] == b[i] ? 1 : 0;
+    return 100.0 * double(same) / double(a.size());
+}
+
+std::string rate(std::optional<double> mrays) {
+    if (!mrays) return "-";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", *mrays);
+    return text;
+}
+
+std::string ratio(std::optional<double> a, std::optional<double> b) {
+    if (!a || !b) return "-";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", *a / *b);
+    return text;
+}
+
+// Wall-clock and CPU time (every thread of the process: lavapipe's workers,
+// the reference's, Embree's) of one run. On a machine shared with other work
+// the wall clock stretches while CPU time stays about the work done, so both
+// are reported; on a quiet machine wall = CPU / threads when all cores work.
+struct Timing {
+    double wall = 1e30, cpu = 1e30;
+    void keepBest(const Timing& t) {
+        wall = std::min(wall, t.wall);
+        cpu = std::min(cpu, t.cpu);
+    }
+};
+
+double processCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+template <typename F>
+Timing timed(F&& work) {
+    const auto wall = Clock::now();
+    const double cpu = processCpuSeconds();
+    work();
+    return {secondsSince(wall), processCpuSeconds() - cpu};
+}
+
+// CPU time of allocating a zeroed Frame (tens of MB at 1920x1080: page
+// faults and zeroing), which the CPU reference pays before tracing; taken out
+// of its CPU-time figure, as the GPU's dispatch loop leaves it out too.
+double frameCpu(int width, int height) {
+    double best = 1e30;
+    for (int r = 0; r < 2; ++r)
+        best = std::min(best, timed([&] {
+                                  const Frame frame(width, height);
+                                  volatile float sink = frame.color.back().x;  // keep the allocation
+                                  (void)sink;
+                              }).cpu);
+    return best;
+}
+
+// The engines of the table, in its column order.
+enum Engine { kGpu, kAllFeatures, kCpuReference, kEmbree1, kEmbree8, kEngines };
+
+struct Row {
+    std::string name, description, variant;
+    std::size_t objects = 0;
+    bool sphereOnly = false;
+    std::optional<Timing> time[kEngines];
+    std::string idsGpu = "-", idsEmbree = "-", builds;
+    std::optional<Timing> smallGpu;  // the specialised variant on the all-features variant's image
+};
+
+// The rays of the big image and of the all-features variant's small one.
+struct RayCounts {
+    double full, small;
+};
+
+// Mrays/s from wall-clock time, or Mrays per CPU-second.
+std::optional<double> mrays(const std::optional<Timing>& time, double rays, bool cpuTime) {
+    if (!time) return std::nullopt;
+    return rays / (cpuTime ? time->cpu : time->wall) * 1e-6;
+}
+std::optional<double> mrays(const Row& row, Engine e, RayCounts rays, bool cpuTime) {
+    return mrays(row.time[e], e == kAllFeatures ? rays.small : rays.full, cpuTime);
+}
+// Specialised over all-features, both on the all-features variant's image.
+std::optional<double> specialisedOverAll(const Row& row, RayCounts rays, bool cpuTime) {
+    const auto gpu = mrays(row.smallGpu, rays.small, cpuTime);
+    const auto all = mrays(row, kAllFeatures, rays, cpuTime);
+    if (!gpu || !all) return std::nullopt;
+    return *gpu / *all;
+}
+
+void printTable(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
+    std::printf("| scene | objects | variant | GPU | all-features | CPU ref | Embree 1 | Embree 8 "
+                "| GPU/all | GPU/CPU | GPU/Embree |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (const Row& r : rows) {
+        std::optional<double> m[kEngines];
+        for (int e = 0; e < kEngines; ++e) m[e] = mrays(r, Engine(e), rays, cpuTime);
+        const std::optional<double> embree =
+            m[kEmbree1] && m[kEmbree8] ? std::optional(std::max(*m[kEmbree1], *m[kEmbree8])) : std::nullopt;
+        std::printf("| %s | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r.description.c_str(),
+                    r.objects, r.variant.c_str(), rate(m[kGpu]).c_str(), rate(m[kAllFeatures]).c_str(),
+                    rate(m[kCpuReference]).c_str(), rate(m[kEmbree1]).c_str(), rate(m[kEmbree8]).c_str(),
+                    rate(specialisedOverAll(r, rays, cpuTime)).c_str(), ratio(m[kGpu], m[kCpuReference]).c_str(),
+                    ratio(m[kGpu], embree).c_str());
+    }
+}
+
+// The aims of issue #7, from one table's figures.
+void printAims(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
+    const char* unit = cpuTime ? "per CPU-second" : "wall clock";
+    double minSphere = 1e30, maxSphere = 0, minAll = 1e30, bestEmbree = 0, worstEmbree = 1e30;
+    std::optional<double> at10, at100k;
+    for (const Row& r : rows) {
+        const auto gpu = mrays(r, kGpu, rays, cpuTime);
+        if (!gpu) continue;
+        if (const auto overAll = specialisedOverAll(r, rays, cpuTime)) {
+            minAll = std::min(minAll, *overAll);
+            if (r.sphereOnly) {
+                minSphere = std::min(minSphere, *overAll);
+                maxSphere = std::max(maxSphere, *overAll);
+            }
+        }
+        const auto e1 = mrays(r, kEmbree1, rays, cpuTime), e8 = mrays(r, kEmbree8, rays, cpuTime);
+        if (e1 && e8) {
+            bestEmbree = std::max(bestEmbree, *gpu / std::max(*e1, *e8));
+            worstEmbree = std::min(worstEmbree, *gpu / std::max(*e1, *e8));
+        }
+        if (r.name == "spheres10") at10 = gpu;
+        if (r.name == "spheres100k") at100k = gpu;
+    }
+    if (maxSphere > 0)
+        std::printf("- specialised >= 1.5x all-features on sphere-only scenes (%s): %.2fx .. %.2fx: %s\n",
+                    unit, minSphere, maxSphere, minSphere >= 1.5 ? "met" : "NOT met");
+    if (minAll < 1e30)
+        std::printf("- specialised never slower than all-features (%s): lowest %.2fx: %s\n", unit,
+                    minAll, minAll >= 1 ? "met" : minAll >= 0.95 ? "even within noise" : "NOT met");
+    if (bestEmbree > 0)
+        std::printf("- lavapipe >= 0.7x Embree (%s): GPU/Embree %.2fx .. %.2fx: %s\n", unit,
+                    worstEmbree, bestEmbree,
+                    worstEmbree >= 0.7 ? "met" : bestEmbree >= 0.7 ? "met on some scenes" : "NOT met");
+    if (at10 && at100k)
+        std::printf("- cost per ray at 100000 spheres / at 10 (GPU, %s): %.2fx\n", unit, *at10 / *at100k);
+}
+
+// The ray-sphere test's arithmetic (toObjectSpace in trace.comp,
+// shapes/sphere.glsl), counted in FMA slots: one multiply, add or fused
+// multiply-add is one slot (mul + add pairs fused wherever they can be, so
+// this is the least the hardware must issue); a division or square root
+// counts 1, though it costs several. Every ray in the missed-spheres frames
+// misses, so the test ends at `disc < 0`:
+//   origin into generic space, 3 x dot(row, (o, 1)) = 3 x 3 fma      9
+//   direction, 3 x dot3 = 3 x 3                                       9
+//   a = d.d 3, b = o.d 3, b / a 1, fPerp = o - (b/a) d 3,
+//   fPerp.fPerp 3, 1 - that 1, a * that 1                            15
+// = 33 slots (57 flops unfused). llvmpipe runs a shader 8 lanes at a time
+// with masks; if it does not branch around the rest of the test for a group
+// whose lanes all missed, it also issues q with its sqrt 3, c 3, t0 and t1 2,
+// both normals 6, the tie tolerance 2: 49 slots. Both fractions are printed.
+// Loads, compares, selects and the loop are not counted.
+constexpr double kSlotsPerMissedSphere = 33, kSlotsPerWholeSphereTest = 49;
+
+// One tuning configuration of the specialised GPU variant.
+struct Experiment {
+    const char* name;
+    gpu::GpuRenderOptions options;
+};
+
+// The tuning table: each configuration against the shipped one (8x8
+// workgroups, 256-pixel tiles left to right), the runs interleaved
+// round-robin so that other load on the machine falls on all of them alike.
+void runExperiments(const Options& o, gpu::Context& context) {
+    const gpu::GpuRenderOptions base{.shaderDirectory = o.shaderDirectory, .tileSize = o.tile};
+    const auto with = [&](auto change) {
+        gpu::GpuRenderOptions options = base;
+        change(options);
+        return options;
+    };
+    const std::vector<Experiment> experiments{
+        {"8x8 workgroups, 256 px tiles (shipped)", base},
+        {"16x4 workgroups", with([](auto& p) { p.workgroupX = 16, p.workgroupY = 4; })},
+        {"32x2 workgroups", with([](auto& p) { p.workgroupX = 32, p.workgroupY = 2; })},
+        {"4x16 workgroups", with([](auto& p) { p.workgroupX = 4, p.workgroupY = 16; })},
+        {"64 px tiles", with([](auto& p) { p.tileSize = 64; })},
+        {"1024 px tiles", with([](auto& p) { p.tileSize = 1024; })},
+        {"serpentine tile order", with([](auto& p) { p.serpentineTiles = true; })},
+        {"sphere early-out (behind the ray)",
+         with([](auto& p) { p.userDefines = {{"VKRAY_SPHERE_EARLY_OUT", "1"}}; })},
+    };
+    std::printf("\nTuning (specialised variant, %dx%d, best of %d interleaved runs), Mrays per "
+                "CPU-second and its ratio to the shipped configuration:\n\n",
+                o.width, o.height, o.repeat + 1);
+    std::printf("| scene |");
+    for (const Experiment& e : experiments) std::printf(" %s |", e.name);
+    std::printf("\n|---|");
+    for (size_t i = 0; i < experiments.size(); ++i) std::printf("---|");
+    std::printf("\n");
+    for (const BenchScene& bs : o.scenes) {
+        Scene scene = bs.make();
+        if (!o.shaded) {
+            scene.lights.clear();
+            scene.maxRecursionDepth = 0;
+        }
+        const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
+        const CameraBasis basis = makeCameraBasis(camera, o.width, o.height);
+        const RenderSettings settings{o.width, o.height, 1};
+        std::vector<std::unique_ptr<gpu::GpuTracer>> tracers;
+        std::vector<Frame> reference;
+        for (const Experiment& e : experiments) {
+            tracers.push_back(std::make_unique<gpu::GpuTracer>(context, e.options));
+            // The first render JIT-compiles; keep its image to check each
+            // configuration draws the same picture.
+            reference.push_back(tracers.back()->render(scene, basis, settings));
+        }
+        std::vector<Timing> best(experiments.size());
+        for (int r = 0; r < o.repeat + 1; ++r)
+            for (size_t i = 0; i < experiments.size(); ++i) {
+                gpu::GpuRenderStats stats;
+                tracers[i]->render(scene, basis, settings, &stats);
+                best[i].keepBest({stats.renderSeconds, stats.renderCpuSeconds});
+            }
+        const double rays = double(o.width) * o.height;
+        std::printf("| %s |", bs.description.c_str());
+        for (size_t i = 0; i < experiments.size(); ++i) {
+            const bool same = reference[i].color == reference[0].color && reference[i].id == reference[0].id;
+            std::printf(" %.2f (%.2fx)%s |", rays / best[i].cpu * 1e-6, best[0].cpu / best[i].cpu,
+                        same ? "" : " image differs!");
+        }
+        std::printf("\n");
+        std::fflush(stdout);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Options o = parse(argc, argv);
+    // lavapipe's thread count is pinned (as the tests do) unless the caller set it.
+    if (!std::getenv("LP_NUM_THREADS")) ::setenv("LP_NUM_THREADS", std::to_string(o.threads).c_str(), 1);
+    const auto runStart = Clock::now();
+    try {
+        gpu::Context context;
+        const gpu::DeviceInfo& device = context.device();
+        const std::string& shaders = o.shaderDirectory;
+        gpu::GpuTracer specialised(context, {.shaderDirectory = shaders, .tileSize = o.tile});
+        gpu::GpuTracer allFeatures(context, {.shaderDirectory = shaders, .allFeatures = true, .tileSize = o.tile});
+
+        char date[64];
+        const std::time_t now = std::time(nullptr);
+        std::strftime(date, sizeof date, "%Y-%m-%d %H:%M %Z", std::localtime(&now));
+        std::printf("vkray_bench, %s\n", date);
+        std::printf("machine: %s, %u CPUs (nproc); load average %s\n", cpuModel().c_str(),
+                    std::thread::hardware_concurrency(), loadAverage().c_str());
+        std::printf("device: %s (%s, driver %s %s), LP_NUM_THREADS=%s\n", device.name.c_str(),
+                    device.type.c_str(), device.driverName.c_str(), device.driverInfo.c_str(),
+                    std::getenv("LP_NUM_THREADS"));
+#if VKRAY_HAVE_EMBREE
+        std::printf("Embree %s\n", bench::EmbreeTracer::version().c_str());
+#else
+        std::printf("Embree: not built (CMake did not find Embree 3; apt install libembree-dev)\n");
+#endif
+        std::printf("%dx%d primary rays, best of %d runs; CPU reference and Embree on %d threads; "
+                    "GPU tiles %d px, shaders %s\n",
+                    o.width, o.height, o.repeat, o.threads, o.tile, shaders.c_str());
+        std::printf("%s; GPU: the dispatch loop with read-back; CPU reference: the whole render "
+                    "(less allocating the frame); both shade each hit (ambient, emissive%s); Embree: "
+                    "closest hit only (rtcIntersect1, rtcIntersect8 on 4x2 pixels)\n",
+                    o.shaded ? "shaded (--shaded): lights, shadow feelers and secondary rays as the "
+                               "scenes say" : "primary rays only: lights and secondary rays removed",
+                    o.shaded ? ", lights, feelers, secondary rays" : "");
+        if (o.allWidth != o.width || o.allHeight != o.height)
+            std::printf("all-features variant (--all-size): on a %dx%d image of the same view; GPU/all "
+                        "compares it with the specialised variant on that image\n",
+                        o.allWidth, o.allHeight);
+        std::fflush(stdout);
+
+        if (o.experiments) runExperiments(o, context);
+        if (o.onlyExperiments) {
+            std::printf("\ntotal %.0f s; load average %s\n", secondsSince(runStart), loadAverage().c_str());
+            return 0;
+        }
+        std::vector<Row> rows;
+        const RayCounts rays{double(o.width) * o.height, double(o.allWidth) * o.allHeight};
+        for (const BenchScene& bs : o.scenes) {
+            Scene scene = bs.make();
+            // Primary rays only (default): no lights, so no shadow feelers,
+            // and no reflected or refracted rays. Every engine then traces
+            // exactly the same rays (Embree finds closest hits only).
+            if (!o.shaded) {
+                scene.lights.clear();
+                scene.maxRecursionDepth = 0;
+            }
+            const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
+            const RenderSettings settings{o.width, o.height, 1};
+            const CameraBasis basis = makeCameraBasis(camera, o.width, o.height);
+            Row row;
+            row.name = bs.name;
+            row.description = bs.description;
+            row.objects = scene.objects.size();
+            row.sphereOnly = bs.sphereOnly;
+
+            // GPU: the dispatch loop (wall clock and CPU time), as GpuTracer
+            // measures it. llvmpipe JIT-compiles a pipeline at its first
+            // dispatch: a small warm-up render takes that out of the timed ones.
+            const auto gpuTiming = [&](gpu::GpuTracer& tracer, bool all, const RenderSettings& size,
+                                       int repeat, Frame* keep) {
+                const CameraBasis sized = makeCameraBasis(camera, size.width, size.height);
+                tracer.render(scene, makeCameraBasis(camera, 64, 36), {64, 36, 1});
+                Timing best;
+                for (int r = 0; r < repeat; ++r) {
+                    gpu::GpuRenderStats stats;
+                    Frame frame = tracer.render(scene, sized, size, &stats);
+                    best.keepBest({stats.renderSeconds, stats.renderCpuSeconds});
+                    row.variant = all ? row.variant : stats.variant;
+                    if (keep && r == 0) *keep = std::move(frame);
+                }
+                return best;
+            };
+            Frame gpuFrame;
+            row.time[kGpu] = gpuTiming(specialised, false, settings, o.repeat, &gpuFrame);
+            // The all-features variant is tens of times slower on lavapipe
+            // (BENCHMARKS.md): --all-size times it on a smaller image of the
+            // same view, beside the specialised variant on that image.
+            if (o.all) {
+                const RenderSettings small{o.allWidth, o.allHeight, 1};
+                row.time[kAllFeatures] = gpuTiming(allFeatures, true, small, o.repeat, nullptr);
+                row.smallGpu = small.width == o.width && small.height == o.height
+                                   ? row.time[kGpu]
+                                   : gpuTiming(specialised, false, small, o.repeat, nullptr);
+            }
+
+            const Timing bvh = timed([&] { buildObjectBvh(scene); });
+            char text[96];
+            std::snprintf(text, sizeof text, "object BVH %.3f s", bvh.wall);
+            row.builds = text;
+            Frame cpuFrame;
+            if (o.cpu) {
+                Timing best;
+                for (int r = 0; r < o.repeat; ++r)
+                    best.keepBest(timed([&] { cpuFrame = reference::render(scene, basis, settings, {o.threads}); }));
+                best.cpu = std::max(best.cpu - frameCpu(o.width, o.height), 1e-9);
+                row.time[kCpuReference] = best;
+                std::snprintf(text, sizeof text, "%.2f %%",
+                              agreement(std::vector<int>(gpuFrame.id.begin(), gpuFrame.id.end()), cpuFrame.id));
+                row.idsGpu = text;
+            }
+#if VKRAY_HAVE_EMBREE
+            if (o.embree) {
+                std::optional<bench::EmbreeTracer> embree;
+                const Timing build = timed([&] { embree.emplace(scene, o.threads); });
+                std::snprintf(text, sizeof text, ", Embree %.3f s (%s)", build.wall, embree->contents().c_str());
+                row.builds += text;
+                for (bool packets : {false, true}) {
+                    Timing best;
+                    std::vector<int> ids;
+                    for (int r = 0; r < o.repeat; ++r)
+                        best.keepBest(timed([&] { ids = embree->trace(basis, o.width, o.height, o.threads, packets); }));
+                    row.time[packets ? kEmbree8 : kEmbree1] = best;
+                    if (packets && o.cpu) {
+                        std::snprintf(text, sizeof text, "%.2f %%", agreement(ids, cpuFrame.id));
+                        row.idsEmbree = text;
+                    }
+                }
+            }
+#endif
+            std::fprintf(stderr, "  %-12s done at %.0f s\n", bs.name.c_str(), secondsSince(runStart));
+            rows.push_back(row);
+        }
+
+        std::printf("\nMrays/s, wall clock (best of %d):\n\n", o.repeat);
+        printTable(rows, rays, false);
+        std::printf("\nMrays per CPU-second (all threads' CPU time; robust to other load on the "
+                    "machine):\n\n");
+        printTable(rows, rays, true);
+        std::printf("\nSame rays, same hits: object ids equal to the CPU reference's, and build times:\n\n");
+        std::printf("| scene | GPU ids | Embree ids | builds |\n|---|---|---|---|\n");
+        for (const Row& r : rows)
+            std::printf("| %s | %s | %s | %s |\n", r.description.c_str(), r.idsGpu.c_str(),
+                        r.idsEmbree.c_str(), r.builds.c_str());
+        std::printf("\nAims of issue #7 (GPU/Embree against the faster Embree column):\n");
+        printAims(rows, rays, false);
+        printAims(rows, rays, true);
+        std::fflush(stdout);
+
+        if (o.fma) {
+            std::printf("\nFMA peak (bench/shaders/fma_peak.comp on %s), per CPU-second and wall clock:\n",
+                        device.name.c_str());
+            bench::FmaPeak peak;
+            for (int chains : {4, 8, 16}) {
+                const bench::FmaPeak p =
+                    bench::measureFmaPeak(context, VKRAY_SOURCE_DIR "/bench/shaders", chains);
+                std::printf("- %2d vec4 chains per invocation: %.1f GFLOP per CPU-second, %.1f GFLOP/s wall\n",
+                            chains, p.flops / p.cpuSeconds * 1e-9, p.flops / p.seconds * 1e-9);
+                if (p.flops / p.cpuSeconds > peak.flops / std::max(peak.cpuSeconds, 1e-30)) peak = p;
+            }
+            const double peakPerCpuSecond = peak.flops / peak.cpuSeconds;
+            // The ray-sphere loop alone: rays that miss 8 spheres, less rays
+            // that miss 1 (every ray tests every sphere: no BVH under 9).
+            Timing time[2];
+            for (int r = 0; r < 4; ++r)  // the first of each JIT-compiles: best of the rest
+                for (int k = 0; k < 2; ++k) {
+                    const Scene scene = bench::missedSpheres(k == 0 ? 1 : 8);
+                    const CameraBasis basis = makeCameraBasis(*scene.camera, o.width, o.height);
+                    const RenderSettings settings{o.width, o.height, 1};
+                    gpu::GpuRenderStats st;
+                    specialised.render(scene, basis, settings, &st);
+                    if (r > 0) time[k].keepBest({st.renderSeconds, st.renderCpuSeconds});
+                }
+            const double tests = 7 * rays.full;
+            const double cpuPerTest = (time[1].cpu - time[0].cpu) / tests;
+            const double peakFmaPerCpuSecond = peakPerCpuSecond / 2;  // 2 flops per FMA
+            const double slotsPerCpuSecond = kSlotsPerMissedSphere / cpuPerTest;
+            std::printf("- ray-sphere loop: frames missing 1 and 8 spheres took %.3f and %.3f CPU-s "
+                        "(%.3f and %.3f s wall): %.2f CPU-ns per ray-sphere test (%.0f Mtests per "
+                        "CPU-second)\n",
+                        time[0].cpu, time[1].cpu, time[0].wall, time[1].wall, cpuPerTest * 1e9,
+                        1e-6 / cpuPerTest);
+            std::printf("- FMA peak %.2f G FMA per CPU-second; the loop issues %.2f G FMA slots per "
+                        "CPU-second counting the %.0f a miss needs = %.1f %% of the peak "
+                        "(%.1f %% counting all %.0f of the whole test)\n",
+                        peakFmaPerCpuSecond * 1e-9, slotsPerCpuSecond * 1e-9, kSlotsPerMissedSphere,
+                        100 * slotsPerCpuSecond / peakFmaPerCpuSecond,
+                        100 * kSlotsPerWholeSphereTest / cpuPerTest / peakFmaPerCpuSecond,
+                        kSlotsPerWholeSphereTest);
+        }
+        std::printf("\ntotal %.0f s; load average %s\n", secondsSince(runStart), loadAverage().c_str());
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "vkray_bench: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

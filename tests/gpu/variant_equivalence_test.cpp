@@ -1,0 +1,158 @@
+// Leaving code out changes nothing: every scene here and in the corpus
+// renders the same bytes in its specialised variant (only its shapes and
+// shading) and in the all-features variant; and each variant declares
+// exactly the bindings the host uploads (bindingsFor).
+#include "support/gpu_fixture.h"
+
+#include "gpu/shader_variant.h"
+#include "gpu/spirv_cache.h"
+#include "scene/scene_geometry.h"
+#include "shaders/layout.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <ostream>
+#include <set>
+
+namespace vkray {
+namespace {
+
+namespace fs = std::filesystem;
+
+// scenes/*.sdl and the corpus's scenes (*.dat but hlArch.dat, an outline that
+// castle.dat extrudes). Lenient for all: the corpus needs it (words Hill's
+// grammar lacks), and our scenes read the same either way.
+std::vector<std::string> scenesToRender() {
+    std::vector<std::string> files;
+    for (const std::string& folder : {test::kSourceDir + "/scenes", test::kCorpusDir})
+        for (const auto& entry : fs::directory_iterator(folder))
+            if ((entry.path().extension() == ".sdl" || entry.path().extension() == ".dat") &&
+                entry.path().filename() != "hlArch.dat")
+                files.push_back(entry.path().string());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+// Bit patterns, so that -0 against +0 or two NaNs count as what they are.
+template <typename T>
+size_t differingValues(const std::vector<T>& a, const std::vector<T>& b) {
+    if (a.size() != b.size()) return std::max(a.size(), b.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < a.size(); ++i)
+        differing += std::memcmp(&a[i], &b[i], sizeof(T)) != 0 ? 1 : 0;
+    return differing;
+}
+
+struct Case {
+    std::string path;
+    int spp;
+};
+
+// gtest's name for a case in its messages (else it prints the struct's bytes).
+void PrintTo(const Case& c, std::ostream* out) {
+    *out << fs::path(c.path).filename().string() << " --spp " << c.spp;
+}
+
+class SpecialisedVsAllFeatures : public ::testing::TestWithParam<Case> {};
+
+// Same bytes, not a tolerance. A variant only drops code that cannot run for
+// its scene: the `case`s of shapes it lacks, and shading whose run-time
+// condition can never hold (a reflection test that is always false, a
+// feeler that cannot meet anything). What remains is the same source, so
+// lavapipe computes the same arithmetic, in the same order, for every ray.
+// Small images (96x72) keep this cheap; spp 3 covers the antialiasing code.
+TEST_P(SpecialisedVsAllFeatures, RenderTheSameBytes) {
+    const Case& c = GetParam();
+    const Scene scene = loadScene(c.path, {.lenient = true}, nullptr);
+    ASSERT_FALSE(scene.objects.empty());
+    RenderSettings settings{96, 72, 1, c.spp};
+    const gpu::ShaderFeatures specialised = gpu::featuresOf(scene, settings, false);
+    const gpu::ShaderFeatures all = gpu::featuresOf(scene, settings, true);
+    ASSERT_NE(specialised, all) << "no scene here uses every feature";
+    std::printf("%-16s spp %d: %s vs %s\n", fs::path(c.path).filename().c_str(), c.spp,
+                gpu::describe(specialised).c_str(), gpu::describe(all).c_str());
+    const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
+    const CameraBasis basis = makeCameraBasis(camera, settings.width, settings.height);
+    gpu::GpuRenderStats statsScene, statsAll;
+    const Frame a = test::renderOnGpu(scene, basis, settings, &statsScene, false);
+    const Frame b = test::renderOnGpu(scene, basis, settings, &statsAll, true);
+    ASSERT_EQ(statsScene.variant, gpu::describe(specialised));
+    ASSERT_EQ(statsAll.variant, gpu::describe(all));
+    EXPECT_EQ(differingValues(a.color, b.color), 0u) << "colour bits differ";
+    EXPECT_EQ(differingValues(a.depth, b.depth), 0u);
+    EXPECT_EQ(differingValues(a.normal, b.normal), 0u);
+    EXPECT_EQ(a.id, b.id);
+    // Not an empty picture: the comparison covers hits.
+    EXPECT_GT(std::count_if(a.id.begin(), a.id.end(), [](int id) { return id >= 0; }), 50);
+}
+
+std::vector<Case> cases() {
+    std::vector<Case> result;
+    for (const std::string& path : scenesToRender()) result.push_back({path, 1});
+    for (const char* name : {"/scenes/textures.sdl", "/scenes/whitted.sdl"})
+        result.push_back({test::kSourceDir + name, 3});
+    return result;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, SpecialisedVsAllFeatures, ::testing::ValuesIn(cases()),
+                         [](const auto& info) {
+                             std::string name = fs::path(info.param.path).stem().string();
+                             for (char& ch : name)
+                                 if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                             return name + "_spp" + std::to_string(info.param.spp);
+                         });
+
+// The Binding decorations of a SPIR-V module (OpDecorate %id Binding n).
+std::set<std::uint32_t> spirvBindings(const std::vector<std::uint32_t>& spirv) {
+    constexpr std::uint32_t kOpDecorate = 71, kDecorationBinding = 33;
+    std::set<std::uint32_t> bindings;
+    for (size_t i = 5; i < spirv.size();) {
+        const std::uint32_t words = spirv[i] >> 16, opcode = spirv[i] & 0xffffu;
+        if (words == 0) break;
+        if (opcode == kOpDecorate && words >= 4 && spirv[i + 2] == kDecorationBinding)
+            bindings.insert(spirv[i + 3]);
+        i += words;
+    }
+    return bindings;
+}
+
+// The host uploads a buffer for each of bindingsFor() and nothing else
+// (GpuTracer checks that); here bindingsFor() is checked against what the
+// compiled shader declares, so no variant binds a buffer it never reads.
+TEST(ShaderVariant, BindingsMatchTheSpirv) {
+    // Each kind alone, each shading feature alone, with and without the
+    // object BVH and the debug record, and all: every #if around a binding
+    // is on in one and off in another.
+    std::vector<gpu::ShaderFeatures> variants;
+    const size_t kinds = gpu::kGpuKinds.size(), shadings = gpu::kGpuShading.size();
+    for (size_t feature = 0; feature <= kinds + shadings; ++feature)
+        for (bool bvh : {false, true})
+            for (bool debug : {false, true}) {
+                gpu::ShaderFeatures f;
+                f.kinds[gpu::KIND_SPHERE] = true;
+                if (feature < kinds) f.kinds[feature] = true;
+                else if (feature < kinds + shadings) f.shading[feature - kinds] = true;
+                else {
+                    f.kinds.fill(true);
+                    f.shading.fill(true);
+                }
+                f.objectBvh = bvh;
+                f.debugPixel = debug;
+                variants.push_back(f);
+            }
+    for (const gpu::ShaderFeatures& f : variants) {
+        const gpu::CompiledShader shader =
+            gpu::loadOrCompile({test::kShaderDir, "trace.comp", gpu::definesFor(f)});
+        std::set<std::uint32_t> expected;
+        for (const gpu::ShaderBinding& b : gpu::bindingsFor(f)) expected.insert(b.binding);
+        EXPECT_EQ(spirvBindings(shader.spirv), expected) << gpu::describe(f);
+    }
+}
+
+}  // namespace
+}  // namespace vkray
