@@ -322,11 +322,6 @@ int runRender(const Options& o, std::ostream& out, std::ostream& err) {
         if (o.cpu)
             throw Error("--cpu renders in one process (its threads share the cores); run it "
                         "without mpirun");
-        if (dist::World::current().rank() != 0) {
-            // Only rank 0 speaks; the others' errors still reach stderr.
-            std::ostream quiet(nullptr);
-            return renderOnce(o, session, quiet, quiet);
-        }
     }
     if (o.watch) return runWatch(o, out, err);
     return renderOnce(o, session, out, err);
@@ -438,13 +433,8 @@ int runDevices(std::ostream& out) {
     return 0;
 }
 
-}  // namespace
-
-std::string shaderDirectoryFor(const Options& o) { return shaderDirectory(o); }
-
-int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
-    if (dist::World::current().distributed() && o.command != Command::Render)
-        throw Error("only `vkray render` runs across MPI ranks; run this command without mpirun");
+// The command itself, on this rank.
+int runOnRank(const Options& o, std::ostream& out, std::ostream& err) {
     switch (o.command) {
     case Command::Help: out << usageText(); return 0;
     case Command::Version:
@@ -461,6 +451,27 @@ int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
     }
     return 1;
 }
+
+}  // namespace
+
+std::string shaderDirectoryFor(const Options& o) { return shaderDirectory(o); }
+
+int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
+    const dist::World& world = dist::World::current();
+    if (world.distributed()) {
+        if (o.command != Command::Render && o.command != Command::Stress &&
+            o.command != Command::Report)
+            throw Error("only `vkray render`, `vkray stress` and `vkray report` run across MPI "
+                        "ranks; run this command without mpirun");
+        if (world.rank() != 0) {
+            // Only rank 0 speaks; the others' errors still reach stderr.
+            std::ostream quiet(nullptr);
+            return runOnRank(o, quiet, quiet);
+        }
+    }
+    return runOnRank(o, out, err);
+}
+
 
 int vkrayMain(int argc, char** argv) {
     int status = 1;

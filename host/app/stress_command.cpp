@@ -1,6 +1,7 @@
 #include "app/stress_command.h"
 
 #include "app/commands.h"
+#include "dist/job_hand_out.h"
 #include "gpu/context.h"
 #include "numerics/report_sweep.h"
 #include "numerics/stress_report.h"
@@ -42,6 +43,11 @@ std::string commandLine(const Options& o, const std::string& verb) {
     return text;
 }
 
+// ", 2 MPI ranks" when the work is spread over several.
+std::string ranksText(const dist::World& world) {
+    return world.distributed() ? ", " + std::to_string(world.size()) + " MPI ranks" : "";
+}
+
 // The output folder exists and is writable before any work starts.
 void prepareOutDirectory(const std::string& directory) {
     std::error_code ec;
@@ -57,19 +63,26 @@ int runStress(const Options& o, std::ostream& out, std::ostream& err) {
     const std::vector<numerics::StressCase> cases = numerics::findStressCases(casesDirectory(o), o.casesPattern);
     const std::string outDirectory = o.outDirectory.empty() ? "stress-report" : o.outDirectory;
     prepareOutDirectory(outDirectory);
-    gpu::Context context(gpu::ContextOptions{o.device, false});
+    const dist::World& world = dist::World::current();
+    gpu::Context context(gpu::ContextOptions{o.device, false, world.localRank()});
     const std::string device = deviceText(context);
     out << "stress: " << cases.size() << " cases, " << o.width << "x" << o.height << ", device "
-        << device << "\n";
+        << device << ranksText(world) << "\n";
     numerics::StressOptions options;
     options.width = o.width;
     options.height = o.height;
     options.shaderDirectory = shaderDirectoryFor(o);
     options.threads = o.threads;
     if (o.precisionGiven) options.gpuModes = {o.precision};
+    // Under mpirun the cases are handed out across the ranks; rank 0 reports.
+    const std::vector<std::string> results =
+        dist::runJobsAcrossRanks(world, cases.size(), [&](std::size_t job) {
+            return numerics::encodeRows(numerics::runStressCase(cases[job], &context, options, &err));
+        });
+    if (world.rank() != 0) return 0;
     std::vector<numerics::ModeMetrics> rows;
-    for (const numerics::StressCase& c : cases) {
-        const std::vector<numerics::ModeMetrics> caseRows = numerics::runStressCase(c, &context, options, &err);
+    for (const std::string& result : results) {
+        const std::vector<numerics::ModeMetrics> caseRows = numerics::decodeRows(result);
         rows.insert(rows.end(), caseRows.begin(), caseRows.end());
     }
     const numerics::Report report = numerics::stressReport(rows, cases, commandLine(o, "stress"), device);
@@ -106,10 +119,11 @@ int runReport(const Options& o, std::ostream& out, std::ostream& err) {
     const std::string outDirectory =
         o.outDirectory.empty() ? "report-" + fs::path(o.scenePath).stem().string() : o.outDirectory;
     prepareOutDirectory(outDirectory);
-    gpu::Context context(gpu::ContextOptions{o.device, false});
+    const dist::World& world = dist::World::current();
+    gpu::Context context(gpu::ContextOptions{o.device, false, world.localRank()});
     const std::string device = deviceText(context);
     out << "report: " << o.scenePath << ", " << o.width << "x" << o.height << ", device " << device
-        << "\n";
+        << ranksText(world) << "\n";
     numerics::SweepOptions options;
     options.width = o.width;
     options.height = o.height;
@@ -117,6 +131,7 @@ int runReport(const Options& o, std::ostream& out, std::ostream& err) {
     options.threads = o.threads;
     if (o.precisionGiven) options.precision = o.precision;
     const std::vector<numerics::SweepPoint> points = numerics::runSweep(scene, camera, context, options, &err);
+    if (world.rank() != 0) return 0;  // rank 0 reports
     const numerics::Report report = numerics::sweepReport(o.scenePath, points, device);
     out << numerics::formatTable(report.table);
     numerics::writeReportFiles(report, outDirectory, "report", out);

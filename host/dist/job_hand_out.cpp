@@ -141,6 +141,17 @@ void JobHandOut::wait() { thread_.join(); }
 
 double JobHandOut::answeringSeconds() const { return state_->answeringSeconds; }
 
+void shareFromRankZero(const World& world, std::string& bytes) {
+    if (!world.distributed()) return;
+    std::uint64_t size = bytes.size();
+    MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    bytes.resize(size);
+    // In pieces: MPI counts in int.
+    constexpr std::uint64_t kPiece = 1u << 30;
+    for (std::uint64_t at = 0; at < size; at += kPiece)
+        MPI_Bcast(bytes.data() + at, int(std::min(kPiece, size - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
+}
+
 std::optional<GivenJob> askRankZero(const std::optional<std::pair<std::size_t, std::string>>& done) {
     sendMessage(0, kAsk, done ? std::int64_t(done->first) : kNone, done ? done->second : std::string());
     auto [job, description] = receiveMessage(waitForMessage(0, kGive));
@@ -162,6 +173,7 @@ double JobHandOut::answeringSeconds() const { return 0; }
 std::optional<GivenJob> askRankZero(const std::optional<std::pair<std::size_t, std::string>>&) {
     throw Error("this vkray was built without MPI support");
 }
+void shareFromRankZero(const World&, std::string&) {}
 
 #endif
 

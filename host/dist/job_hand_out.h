@@ -58,6 +58,9 @@ struct GivenJob {
 };
 std::optional<GivenJob> askRankZero(const std::optional<std::pair<std::size_t, std::string>>& done);
 
+// Rank 0's `bytes` on every rank (they replace the others' own).
+void shareFromRankZero(const World& world, std::string& bytes);
+
 // Every job run once, somewhere; on rank 0 the results in job order, on the
 // others nothing. `run` may throw: the rank reports and ends the job.
 std::vector<std::string> runJobsAcrossRanks(const World& world, std::size_t jobs,

@@ -1,5 +1,7 @@
 #include "numerics/report_sweep.h"
 
+#include "dist/bytes.h"
+#include "dist/job_hand_out.h"
 #include "gpu/gpu_tracer.h"
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"
@@ -71,6 +73,40 @@ std::vector<Knob> reportKnobs() {
     };
 }
 
+namespace {
+
+// A reference frame as it travels between MPI ranks: its time, colours and ids.
+std::string encodeReference(double seconds, const Frame& frame) {
+    dist::ByteWriter writer;
+    writer << seconds << frame.width << frame.height;
+    for (std::size_t i = 0; i < frame.pixelCount(); ++i)
+        writer << frame.color[i].x << frame.color[i].y << frame.color[i].z << frame.id[i];
+    return writer.bytes();
+}
+
+std::pair<double, Frame> decodeReference(const std::string& bytes) {
+    dist::ByteReader reader(bytes);
+    double seconds = 0;
+    int width = 0, height = 0;
+    reader >> seconds >> width >> height;
+    if (std::uint64_t(width) * std::uint64_t(height) > bytes.size())
+        throw Error("MPI: a reference frame came back garbled");
+    Frame frame(width, height);
+    for (std::size_t i = 0; i < frame.pixelCount(); ++i)
+        reader >> frame.color[i].x >> frame.color[i].y >> frame.color[i].z >> frame.id[i];
+    return {seconds, std::move(frame)};
+}
+
+// A point's measurements (its configuration is known to every rank).
+template <typename Point, typename Visit>
+void forEachMeasurement(Point& p, Visit&& visit) {
+    visit(p.ran);
+    visit(p.note);
+    for (auto* value : {&p.seconds, &p.rmse, &p.maxError, &p.idMismatchPercent}) visit(*value);
+}
+
+}  // namespace
+
 std::vector<SweepPoint> runSweep(const Scene& scene, const Camera& camera, gpu::Context& context,
                                  const SweepOptions& options, std::ostream* log) {
     ReportConfig base;
@@ -79,55 +115,73 @@ std::vector<SweepPoint> runSweep(const Scene& scene, const Camera& camera, gpu::
     combine(reportKnobs(), 0, base, {}, points);
     if (options.precision)
         std::erase_if(points, [&](const SweepPoint& p) { return p.config.precision != *options.precision; });
-
-    // The reference of each size, rendered once (and itself a point: error 0).
-    struct Reference {
-        Frame frame;
-        double seconds;
-    };
-    std::map<std::pair<int, int>, Reference> references;
     const int threads = options.threads > 0 ? options.threads
                                             : int(std::max(1u, std::thread::hardware_concurrency()));
-    const auto referenceFor = [&](const RenderSettings& s) -> const Reference& {
-        const auto key = std::make_pair(s.width, s.height);
-        auto it = references.find(key);
-        if (it != references.end()) return it->second;
-        const RenderSettings full{s.width, s.height, 1, kReferenceSpp};
-        const auto start = Clock::now();
-        Frame frame = reference::render(scene, makeCameraBasis(camera, s.width, s.height), full, {threads});
-        const double seconds = secondsSince(start);
-        if (log) *log << "reference " << sizeText(full) << ": cpu double " << seconds << " s\n";
-        return references.emplace(key, Reference{std::move(frame), seconds}).first->second;
-    };
+    // Under mpirun the work is handed out across the ranks (dist/job_hand_out.h)
+    // in two rounds: the references, which every rank then holds, and the points.
+    const dist::World& world = dist::World::current();
+
+    // The reference of each size (itself a point: error 0).
+    std::vector<std::pair<int, int>> sizes;
+    for (const SweepPoint& p : points) {
+        const std::pair<int, int> size{p.config.settings.width, p.config.settings.height};
+        if (std::find(sizes.begin(), sizes.end(), size) == sizes.end()) sizes.push_back(size);
+    }
+    std::vector<std::string> rendered =
+        dist::runJobsAcrossRanks(world, sizes.size(), [&](std::size_t job) {
+            const RenderSettings full{sizes[job].first, sizes[job].second, 1, kReferenceSpp};
+            const auto start = Clock::now();
+            const Frame frame = reference::render(
+                scene, makeCameraBasis(camera, full.width, full.height), full, {threads});
+            const double seconds = secondsSince(start);
+            if (log) *log << "reference " << sizeText(full) << ": cpu double " << seconds << " s\n";
+            return encodeReference(seconds, frame);
+        });
+    rendered.resize(sizes.size());
+    std::map<std::pair<int, int>, std::pair<double, Frame>> references;
+    for (std::size_t i = 0; i < sizes.size(); ++i) {
+        dist::shareFromRankZero(world, rendered[i]);
+        references.emplace(sizes[i], decodeReference(rendered[i]));
+    }
 
     std::map<Precision, std::unique_ptr<gpu::GpuTracer>> tracers;
-    for (SweepPoint& p : points) {
-        const RenderSettings& s = p.config.settings;
-        const Reference& reference = referenceFor(s);
-        if (p.config.precision == Precision::Fp64 && !context.device().shaderFloat64) {
-            p.note = "the device has no shaderFloat64";
-            continue;
-        }
-        auto& tracer = tracers[p.config.precision];
-        if (!tracer)
-            tracer = std::make_unique<gpu::GpuTracer>(
-                context, gpu::GpuRenderOptions{.shaderDirectory = options.shaderDirectory,
-                                               .precision = p.config.precision});
-        const CameraBasis basis = makeCameraBasis(camera, s.width, s.height);
-        Frame frame;
-        p.seconds = std::numeric_limits<double>::infinity();
-        for (int run = 0; run < 3; ++run) {  // the fastest of three
-            gpu::GpuRenderStats stats;
-            frame = tracer->render(scene, basis, s, &stats);
-            p.seconds = std::min(p.seconds, stats.renderSeconds);
-        }
-        CompareResult result = compareImages(colorImage(frame), colorImage(reference.frame), {});
-        compareIds(idImage(frame), idImage(reference.frame), result);
-        p.ran = true;
-        p.rmse = result.rmse;
-        p.maxError = result.maxAbsError;
-        p.idMismatchPercent = result.idMismatchPercent;
-        if (log) *log << labelOf(p) << ": " << p.seconds << " s, RMSE " << p.rmse << "\n";
+    const std::vector<std::string> measured =
+        dist::runJobsAcrossRanks(world, points.size(), [&](std::size_t job) {
+            SweepPoint p = points[job];
+            const RenderSettings& s = p.config.settings;
+            const Frame& reference = references.at({s.width, s.height}).second;
+            if (p.config.precision == Precision::Fp64 && !context.device().shaderFloat64) {
+                p.note = "the device has no shaderFloat64";
+            } else {
+                auto& tracer = tracers[p.config.precision];
+                if (!tracer)
+                    tracer = std::make_unique<gpu::GpuTracer>(
+                        context, gpu::GpuRenderOptions{.shaderDirectory = options.shaderDirectory,
+                                                       .precision = p.config.precision});
+                const CameraBasis basis = makeCameraBasis(camera, s.width, s.height);
+                Frame frame;
+                p.seconds = std::numeric_limits<double>::infinity();
+                for (int run = 0; run < 3; ++run) {  // the fastest of three
+                    gpu::GpuRenderStats stats;
+                    frame = tracer->render(scene, basis, s, &stats);
+                    p.seconds = std::min(p.seconds, stats.renderSeconds);
+                }
+                CompareResult result = compareImages(colorImage(frame), colorImage(reference), {});
+                compareIds(idImage(frame), idImage(reference), result);
+                p.ran = true;
+                p.rmse = result.rmse;
+                p.maxError = result.maxAbsError;
+                p.idMismatchPercent = result.idMismatchPercent;
+                if (log) *log << labelOf(p) << ": " << p.seconds << " s, RMSE " << p.rmse << "\n";
+            }
+            dist::ByteWriter writer;
+            forEachMeasurement(p, [&](const auto& field) { writer << field; });
+            return writer.bytes();
+        });
+    if (world.rank() != 0) return {};  // rank 0 reports
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        dist::ByteReader reader(measured[i]);
+        forEachMeasurement(points[i], [&](auto& field) { reader >> field; });
     }
     for (const auto& [size, reference] : references) {
         SweepPoint p;
@@ -135,7 +189,7 @@ std::vector<SweepPoint> runSweep(const Scene& scene, const Camera& camera, gpu::
                     "size " + std::to_string(size.first) + "x" + std::to_string(size.second)};
         p.config.settings = {size.first, size.second, 1, kReferenceSpp};
         p.ran = true;
-        p.seconds = reference.seconds;
+        p.seconds = reference.first;
         p.note = "the reference";
         points.push_back(p);
     }

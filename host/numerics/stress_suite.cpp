@@ -1,5 +1,6 @@
 #include "numerics/stress_suite.h"
 
+#include "dist/bytes.h"
 #include "gpu/gpu_tracer.h"
 #include "numerics/feelers.h"
 #include "reference/scene_intersector.h"
@@ -192,6 +193,38 @@ ModeMetrics compareWithOracle(const std::vector<OraclePixel>& oracle,
         m.normalErrRms = std::sqrt(nSquares / double(m.compared));
     }
     return m;
+}
+
+namespace {
+
+// Every field of a row, in one order for both directions.
+template <typename Row, typename Visit>
+void forEachField(Row& m, Visit&& visit) {
+    for (auto* text : {&m.caseName, &m.mode, &m.note}) visit(*text);
+    visit(m.ran);
+    for (auto* count : {&m.pixels, &m.silhouette, &m.compared, &m.flips, &m.wrongId, &m.feelers, &m.acne})
+        visit(*count);
+    for (auto* value : {&m.seconds, &m.tErrMax, &m.tErrRms, &m.normalErrMax, &m.normalErrRms})
+        visit(*value);
+}
+
+}  // namespace
+
+std::string encodeRows(const std::vector<ModeMetrics>& rows) {
+    dist::ByteWriter writer;
+    writer << std::uint64_t(rows.size());
+    for (const ModeMetrics& m : rows) forEachField(m, [&](const auto& field) { writer << field; });
+    return writer.bytes();
+}
+
+std::vector<ModeMetrics> decodeRows(const std::string& bytes) {
+    dist::ByteReader reader(bytes);
+    std::uint64_t count = 0;
+    reader >> count;
+    if (count > bytes.size()) throw Error("MPI: a case's rows came back garbled");
+    std::vector<ModeMetrics> rows(count);
+    for (ModeMetrics& m : rows) forEachField(m, [&](auto& field) { reader >> field; });
+    return rows;
 }
 
 std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Context* context,

@@ -102,6 +102,11 @@ struct StressOptions {
     bool cpuDouble = true;
 };
 
+// A case's rows as bytes and back, bit for bit: how they travel from the MPI
+// rank that ran the case to rank 0 (dist/job_hand_out.h).
+std::string encodeRows(const std::vector<ModeMetrics>& rows);
+std::vector<ModeMetrics> decodeRows(const std::string& bytes);
+
 // Runs one case in every mode; `log` (may be null) gets a line per mode.
 std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Context* context,
                                        const StressOptions& options, std::ostream* log);

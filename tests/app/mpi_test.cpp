@@ -1,8 +1,12 @@
-// `vkray render` across MPI ranks (issue 10): the image is the one-rank
-// image, bit for bit, and a failing rank ends the run naming itself.
+// `vkray render`, `vkray stress` and `vkray report` across MPI ranks (issue
+// 10): the image is the one-rank image, bit for bit, the reports hold what
+// one rank's hold (timings aside), and a failing rank ends the run naming
+// itself.
 #include "support/cli_fixture.h"
 
+#include <algorithm>
 #include <chrono>
+#include <sstream>
 
 namespace vkray::test {
 namespace {
@@ -60,6 +64,39 @@ TEST_F(Mpi, TwoRanksRenderTheSameBytesAsOne) {
     }
 }
 
+// A CSV report without its "time s" column (the third in both reports).
+std::string withoutTimes(const std::string& csv) {
+    std::istringstream lines(csv);
+    std::string kept;
+    for (std::string line; std::getline(lines, line);) {
+        const size_t second = line.find(',', line.find(',') + 1);
+        const size_t third = line.find(',', second + 1);
+        kept += line.substr(0, second) + line.substr(third) + "\n";
+    }
+    return kept;
+}
+
+TEST_F(Mpi, StressAndReportHoldWhatOneRankFinds) {
+    const std::string cases = std::string(VKRAY_SOURCE_DIR) + "/scenes/stress";
+    const std::string stress = " stress --size 40x30 --cases sphere --cases-dir " + cases;
+    ASSERT_EQ(vkray(stress + " --out " + path("one")).status, 0);
+    const RunResult two = mpirun("-np 2 " + binary() + stress + " --out " + path("two"));
+    ASSERT_EQ(two.status, 0) << two.output;
+    EXPECT_NE(two.output.find("2 MPI ranks"), std::string::npos) << two.output;
+    const std::string oneCsv = readBytes(path("one/stress.csv"));
+    EXPECT_GT(std::count(oneCsv.begin(), oneCsv.end(), '\n'), 8) << oneCsv;  // 5 cases x 4 modes
+    EXPECT_EQ(withoutTimes(oneCsv), withoutTimes(readBytes(path("two/stress.csv"))));
+
+    const std::string report = std::string(" report ") + VKRAY_SOURCE_DIR +
+                               "/scenes/default.sdl --size 24x18 --precision robust";
+    ASSERT_EQ(vkray(report + " --out " + path("r1")).status, 0);
+    const RunResult twoReport = mpirun("-np 2 " + binary() + report + " --out " + path("r2"));
+    ASSERT_EQ(twoReport.status, 0) << twoReport.output;
+    const std::string oneReport = readBytes(path("r1/report.csv"));
+    EXPECT_GT(std::count(oneReport.begin(), oneReport.end(), '\n'), 10) << oneReport;
+    EXPECT_EQ(withoutTimes(oneReport), withoutTimes(readBytes(path("r2/report.csv"))));
+}
+
 TEST_F(Mpi, AFailingRankEndsTheRunNamingItselfAndWritesNothing) {
     // Rank 1 alone finds no compute device (the test hook of README "Reliability").
     const std::string scene = std::string(VKRAY_SOURCE_DIR) + "/scenes/default.sdl";
@@ -83,7 +120,8 @@ TEST_F(Mpi, CommandsThatDoNotDistributeAreRefused) {
     const std::string scene = std::string(VKRAY_SOURCE_DIR) + "/scenes/default.sdl";
     const RunResult pixel = mpirun("-np 2 " + binary() + " pixel " + scene + " 10 10");
     EXPECT_EQ(pixel.status, 1) << pixel.output;
-    EXPECT_NE(pixel.output.find("only `vkray render` runs across MPI ranks"), std::string::npos)
+    EXPECT_NE(pixel.output.find("only `vkray render`, `vkray stress` and `vkray report` run across"),
+              std::string::npos)
         << pixel.output;
     const RunResult cpu = mpirun("-np 2 " + binary() + " render " + scene + " -o " +
                                  path("out.png") + " --cpu");
