@@ -339,6 +339,18 @@ struct Experiment {
 // The tuning table: each configuration against the shipped one (8x8
 // workgroups, 256-pixel tiles left to right), the runs interleaved
 // round-robin so that other load on the machine falls on all of them alike.
+// The scene as the benchmark traces it. Primary rays only (default): no
+// lights, so no shadow feelers, and no reflected or refracted rays; every
+// engine then traces exactly the same rays (Embree finds closest hits only).
+Scene sceneToTrace(const BenchScene& bench, bool shaded) {
+    Scene scene = bench.make();
+    if (!shaded) {
+        scene.lights.clear();
+        scene.maxRecursionDepth = 0;
+    }
+    return scene;
+}
+
 void runExperiments(const Options& o, gpu::Context& context) {
     const gpu::GpuRenderOptions base{.shaderDirectory = o.shaderDirectory, .tileSize = o.tile};
     const auto with = [&](auto change) {
@@ -366,11 +378,7 @@ void runExperiments(const Options& o, gpu::Context& context) {
     for (size_t i = 0; i < experiments.size(); ++i) std::printf("---|");
     std::printf("\n");
     for (const BenchScene& bs : o.scenes) {
-        Scene scene = bs.make();
-        if (!o.shaded) {
-            scene.lights.clear();
-            scene.maxRecursionDepth = 0;
-        }
+        const Scene scene = sceneToTrace(bs, o.shaded);
         const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
         const CameraBasis basis = makeCameraBasis(camera, o.width, o.height);
         const RenderSettings settings{o.width, o.height, 1};
@@ -452,14 +460,7 @@ int main(int argc, char** argv) {
         std::vector<Row> rows;
         const RayCounts rays{double(o.width) * o.height, double(o.allWidth) * o.allHeight};
         for (const BenchScene& bs : o.scenes) {
-            Scene scene = bs.make();
-            // Primary rays only (default): no lights, so no shadow feelers,
-            // and no reflected or refracted rays. Every engine then traces
-            // exactly the same rays (Embree finds closest hits only).
-            if (!o.shaded) {
-                scene.lights.clear();
-                scene.maxRecursionDepth = 0;
-            }
+            const Scene scene = sceneToTrace(bs, o.shaded);
             const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
             const RenderSettings settings{o.width, o.height, 1};
             const CameraBasis basis = makeCameraBasis(camera, o.width, o.height);
