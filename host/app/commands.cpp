@@ -156,7 +156,8 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
         display.finish();
         reportShader(stats, o, out);
         out << "gpu render: " << fixed(stats.renderSeconds, 3) << " s, precision "
-            << precisionName(o.precision) << ", " << stats.tiles << " tiles, "
+            << precisionName(o.precision) << ", " << stats.tiles
+            << (stats.tiles == 1 ? " tile, " : " tiles, ")
             << fixed(mrays(stats.rays, stats.renderSeconds), 2) << " Mrays/s\n";
         session.requireNoValidationMessages(o);
         return frame;
@@ -459,10 +460,13 @@ std::string shaderDirectoryFor(const Options& o) { return shaderDirectory(o); }
 int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
     const dist::World& world = dist::World::current();
     if (world.distributed()) {
-        if (o.command != Command::Render && o.command != Command::Stress &&
-            o.command != Command::Report)
+        const bool spreads = o.command == Command::Render || o.command == Command::Stress ||
+                             o.command == Command::Report;
+        const bool trivial = o.command == Command::Version || o.command == Command::Help;
+        if (!spreads && !trivial)
             throw Error("only `vkray render`, `vkray stress` and `vkray report` run across MPI "
                         "ranks; run this command without mpirun");
+        if (trivial && world.rank() != 0) return 0;  // rank 0 answers
         if (world.rank() != 0) {
             // Only rank 0 speaks; the others' errors still reach stderr.
             std::ostream quiet(nullptr);
@@ -483,7 +487,13 @@ int vkrayMain(int argc, char** argv) {
         world.finish();
         return status;
     } catch (const Interrupted&) {
-        message = "vkray: interrupted; nothing was written (existing files are as they were)\n";
+        // Under mpirun the signal is as likely mpirun ending the job after
+        // another rank failed (that rank has said why) as a Ctrl-C.
+        message = dist::World::current().distributed()
+                      ? "vkray: stopped by a signal (Ctrl-C, or mpirun ending the job because "
+                        "another rank failed); nothing was written\n"
+                      : "vkray: interrupted; nothing was written (existing files are as they "
+                        "were)\n";
         status = 130;
     } catch (const Error& e) {
         std::ostringstream text;

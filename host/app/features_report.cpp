@@ -57,6 +57,8 @@ std::string bufferSize(std::uint32_t binding, const gpu::GpuScene& packed, const
     case BINDING_CSG_NODES: return arrayBytes(packed.csgNodes);
     case BINDING_PIXMAPS: return arrayBytes(packed.pixmaps);
     case BINDING_TEXELS: return arrayBytes(packed.texels);
+    case BINDING_DOUBLE_CAMERA: return std::to_string(sizeof(GpuDoubleCamera)) + " bytes";
+    case BINDING_DOUBLE_OBJECTS: return arrayBytes(packed.doubleObjects);
     default: return "?";
     }
 }
@@ -169,8 +171,8 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     out << "buffers:\n";
     const gpu::GpuScene packed = gpu::packScene(scene, features);
     for (const gpu::ShaderBinding& b : gpu::bindingsFor(features)) {
-        char line[80];
-        std::snprintf(line, sizeof line, "  %2u %-17s %-8s ", b.binding, b.name,
+        char line[96];
+        std::snprintf(line, sizeof line, "  %2u %-24s %-8s ", b.binding, b.name,
                       b.uniform ? "uniform" : "storage");
         out << line << bufferSize(b.binding, packed, scene) << "\n";
     }

@@ -64,7 +64,7 @@ std::string formatPixelReport(const Scene& scene, const RenderSettings& settings
     table.text_ = "pixel (" + std::to_string(gpu.x) + ", " + std::to_string(gpu.y) + ") of " +
                   std::to_string(settings.width) + "x" + std::to_string(settings.height) +
                   (settings.block > 1 ? ", block " + std::to_string(settings.block) : "") + "\n";
-    table.line("", "GPU (float)", "CPU reference (double)", "|GPU - CPU|");
+    table.line("", "GPU (as float)", "CPU reference (double)", "|GPU - CPU|");
     table.row("ray origin", gpu.rayOrigin, cpu.rayOrigin);
     table.row("ray direction", gpu.rayDirection, cpu.rayDirection);
     const size_t objects = std::min(gpu.objects.size(), cpu.objects.size());

@@ -107,6 +107,7 @@ std::string describe(const ShaderFeatures& features) {
             if (features.shading[i]) text += std::string("+") + kGpuShading[i].name;
     if (features.objectBvh) text += "+bvh";
     if (features.debugPixel) text += "+debug-pixel";
+    if (features.doubles) text += "+fp64";
     return text;
 }
 

@@ -77,7 +77,7 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
 Defines definesFor(const ShaderFeatures& features, const Defines& userDefines = {});
 
 // "sphere+cube", "all shapes", "no shapes", then the shading features
-// ("+shadows+reflection", "+all shading"), "+bvh" and "+debug-pixel".
+// ("+shadows+reflection", "+all shading"), "+bvh", "+debug-pixel" and "+fp64".
 std::string describe(const ShaderFeatures& features);
 
 // One descriptor (set 0) a variant declares: the host creates and uploads a

@@ -80,8 +80,20 @@ bool isNumberToken(const Token& token) {
     return parseSdlNumber(token.text, ignored) == NumberStatus::Ok;
 }
 
+// A word as a message quotes it: bytes that are not printable ASCII (a NUL
+// would end the message in a terminal; binary junk garbles it) as \xNN.
 std::string inQuotes(const std::string& text) {
-    return "'" + text + "'";
+    std::string quoted = "'";
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte >= 0x20 && byte < 0x7f) {
+            quoted += c;
+        } else {
+            static const char kHex[] = "0123456789abcdef";
+            quoted += {'\\', 'x', kHex[byte >> 4], kHex[byte & 15]};
+        }
+    }
+    return quoted + "'";
 }
 
 // The current transform: M (object -> world) and M^-1 kept beside it, each

@@ -41,6 +41,10 @@ TEST_F(Mpi, VersionSaysMpiIsBuiltIn) {
     const RunResult run = vkray("--version");
     EXPECT_EQ(run.status, 0);
     EXPECT_NE(run.output.find("MPI: built in (Open MPI"), std::string::npos) << run.output;
+    const RunResult ranks = mpirun("-np 2 " + binary() + " --version");
+    EXPECT_EQ(ranks.status, 0) << ranks.output;
+    EXPECT_EQ(ranks.output.find("MPI: built in"), ranks.output.rfind("MPI: built in"))
+        << "rank 0 alone answers:\n" << ranks.output;
 }
 
 TEST_F(Mpi, TwoRanksRenderTheSameBytesAsOne) {

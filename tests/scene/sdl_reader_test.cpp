@@ -406,6 +406,9 @@ TEST(SdlReader, StrictModeRefusesUnknownWords) {
     EXPECT_ERROR("sphere\nexponent 50", "t.sdl:2:1: error: unknown keyword 'exponent'");
     EXPECT_ERROR("light 1 2 3 1 1 1 7", "t.sdl:1:19: error: expected a keyword, found the number");
     EXPECT_ERROR("Sphere", "unknown keyword 'Sphere'");  // keywords are case sensitive
+    // Binary junk is quoted as \xNN: a NUL would cut the message short.
+    EXPECT_ERROR(std::string("sphere\nab\0\xff\xfe", 12),
+                 "t.sdl:2:1: error: unknown keyword 'ab\\x00\\xff\\xfe'");
 }
 
 TEST(SdlReader, LenientModeSkipsUnknownWordsAndTheirNumbersWithAWarning) {
