@@ -180,10 +180,11 @@ std::string usageText() {
   vkray compare A B [--ids A.id.pfm B.id.pfm] [--diff FILE] [--fail T] [--failpercent P]
   vkray stress [--cases PATTERN] [--size WxH] [--out DIR]   precision modes against the oracle
   vkray report SCENE.sdl [--size WxH] [--out DIR]          error against run time over the knobs
-  vkray features SCENE.sdl [--variant all] [--spp N] [--lenient] [-D NAME=VALUE]
+  vkray features SCENE.sdl [--variant all] [--spp N] [--precision MODE] [--lenient] [-D NAME=VALUE]
                                                   the scene's features, shader variant and buffers
   vkray devices                                   list Vulkan devices
-  vkray shaders check [--all] [--shader-dir DIR]  compile the shader variants
+  vkray shaders check [--all] [--precision MODE] [--shader-dir DIR]
+                                                  compile the shader variants
   vkray --version | --help
 
 render options:
