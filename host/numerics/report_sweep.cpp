@@ -208,7 +208,8 @@ Report sweepReport(const std::string& scenePath, const std::vector<SweepPoint>& 
             "at " + std::to_string(kReferenceSpp) + " samples per pixel, block 1 and the same "
             "size: RMSE over all pixels and channels, and the largest difference.",
         "In the plots, lower left is better; the dashed line joins the configurations that no "
-        "other beats in both time and error (the Pareto front). Hollow red points have object "
+        "other beats in both time and error (the Pareto front); a label that would cover "
+        "another is left out (every point names itself on hover). Hollow red points have object "
         "ids differing from the reference on more than 1 % of pixels (ids are those of each "
         "pixel's first sample, which sits elsewhere in the reference's finer grid of samples: "
         "a fraction of a percent of edge pixels differ in any configuration)."};

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <limits>
 #include <ostream>
+#include <numeric>
 #include <sstream>
 
 namespace vkray::numerics {
@@ -238,6 +239,38 @@ std::string toSvg(const Plot& plot) {
     if (!front.empty())
         s << "<polyline points=\"" << front
           << "\" fill=\"none\" stroke=\"#999\" stroke-dasharray=\"4 3\"/>\n";
+    // Labels: the front's points first, then the others, each only where it
+    // overlaps no label already placed (a crowded plot would otherwise be a
+    // blot); every point keeps its label as a tooltip.
+    struct Box {
+        double x0, y0, x1, y1;
+    };
+    std::vector<Box> placed;
+    std::vector<size_t> order(plot.points.size());
+    std::iota(order.begin(), order.end(), size_t(0));
+    const auto onFront = [&](const PlotPoint& p) {
+        return std::none_of(plot.points.begin(), plot.points.end(), [&](const PlotPoint& q) {
+            return (q.x < p.x && q.y <= p.y) || (q.x <= p.x && q.y < p.y);
+        });
+    };
+    std::stable_partition(order.begin(), order.end(),
+                          [&](size_t i) { return onFront(plot.points[i]); });
+    std::string labels;
+    for (const size_t i : order) {
+        const PlotPoint& p = plot.points[i];
+        const double x = px(p.x), y = py(p.y);
+        const bool leftSide = x > W - right - 90;
+        const double width = 6.2 * double(p.label.size());
+        const Box box{leftSide ? x - 8 - width : x + 8, y - 17, leftSide ? x - 8 : x + 8 + width, y - 4};
+        if (std::any_of(placed.begin(), placed.end(), [&](const Box& b) {
+                return box.x0 < b.x1 && b.x0 < box.x1 && box.y0 < b.y1 && b.y0 < box.y1;
+            }))
+            continue;
+        placed.push_back(box);
+        labels += "<text x=\"" + printed("%.1f", leftSide ? x - 8 : x + 8) + "\" y=\"" +
+                  printed("%.1f", y - 6) + "\"" + (leftSide ? " text-anchor=\"end\"" : "") + ">" +
+                  xml(p.label) + "</text>\n";
+    }
     for (size_t i = 0; i < plot.points.size(); ++i) {
         const PlotPoint& p = plot.points[i];
         const char* color = kPalette[i % (sizeof kPalette / sizeof *kPalette)];
@@ -247,10 +280,8 @@ std::string toSvg(const Plot& plot) {
                         : "fill=\"" + std::string(color) + "\"")
           << "><title>" << xml(p.label) << ": time " << shortText(ReportValue::num(p.x))
           << ", error " << shortText(ReportValue::num(p.y)) << "</title></circle>\n";
-        const bool leftSide = x > W - right - 90;
-        s << "<text x=\"" << (leftSide ? x - 8 : x + 8) << "\" y=\"" << y - 6 << "\""
-          << (leftSide ? " text-anchor=\"end\"" : "") << ">" << xml(p.label) << "</text>\n";
     }
+    s << labels;
     s << "</svg>\n";
     return s.str();
 }
