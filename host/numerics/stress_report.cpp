@@ -9,7 +9,8 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
     Report report;
     report.title = "vkray stress";
     report.paragraphs = {
-        "`" + command + "` on " + device + ". Every case of scenes/stress/ in each precision "
+        "`" + command + "` on " + device + ". " + std::to_string(cases.size()) +
+            (cases.size() == 1 ? " stress case" : " stress cases") + " in each precision "
         "mode (naive, robust, fp64 on the GPU; the double CPU reference) against a long-double "
         "oracle, pixel by pixel.",
         "silhouette: pixels whose oracle object changes when the ray turns by 8 units in the last "

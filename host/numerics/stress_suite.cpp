@@ -138,7 +138,9 @@ std::vector<StressCase> findStressCases(const std::string& directory, const std:
     }
     std::sort(paths.begin(), paths.end());
     if (paths.empty())
-        throw Error("stress cases: no scene in '" + directory + "' matches '" + pattern + "'");
+        throw Error("stress cases: no scene in '" + directory + "'" +
+                    (pattern.empty() || pattern == "*" ? std::string()
+                                                       : " matches '" + pattern + "'"));
     std::vector<StressCase> cases;
     for (const std::string& path : paths) cases.push_back(readStressCase(path));
     return cases;
