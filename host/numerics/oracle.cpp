@@ -117,8 +117,8 @@ void requireOracleScene(const Scene& scene) {
                 std::string("the stress oracle intersects spheres, planes, squares, cubes, "
                             "tapered cylinders and tori; '") +
                     shapeKeyword(object.type) +
-                    "' is not one (use the CPU reference: `vkray report` without "
-                    "--reference oracle)"));
+                    "' is not one (`vkray report` measures any scene against the CPU "
+                    "reference)"));
 }
 
 double angleBetween(const glm::dvec3& a, const glm::dvec3& b) {
