@@ -1,5 +1,7 @@
 #include "scene/file_loc.h"
 
+#include <filesystem>
+
 namespace vkray {
 
 std::string FileLoc::str() const {
@@ -14,6 +16,16 @@ std::string formatDiagnostic(const FileLoc& loc, const Expansion* expansion,
         out.append("\n").append(e->useLoc.str()).append(": note: in text pasted by 'use ")
             .append(e->name).append("'");
     return out;
+}
+
+std::string writtenName(const FileLoc& loc, const std::string& resolvedPath) {
+    if (loc.known()) {
+        const std::filesystem::path folder = std::filesystem::path(*loc.file).parent_path();
+        const std::filesystem::path relative =
+            std::filesystem::path(resolvedPath).lexically_relative(folder);
+        if (!relative.empty()) return relative.string();
+    }
+    return resolvedPath;
 }
 
 }  // namespace vkray

@@ -27,6 +27,10 @@ struct Expansion {
     std::shared_ptr<const Expansion> parent; // the use that pasted that `use`, if any
 };
 
+// A file the scene at `loc` names, as the scene wrote it (the reader resolved
+// it against the scene's folder), for messages.
+std::string writtenName(const FileLoc& loc, const std::string& resolvedPath);
+
 // Formats "file:line:col: error: message" plus one note line per use site.
 std::string formatDiagnostic(const FileLoc& loc, const Expansion* expansion,
                              const char* severity, const std::string& message);

@@ -14,17 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The file name as the scene wrote it (the reader resolved it against the
-// scene's folder), for messages.
-std::string writtenName(const Pixmap& pixmap) {
-    if (pixmap.loc.known()) {
-        const fs::path folder = fs::path(*pixmap.loc.file).parent_path();
-        const fs::path relative = fs::path(pixmap.file).lexically_relative(folder);
-        if (!relative.empty()) return relative.string();
-    }
-    return pixmap.file;
-}
-
 // The reader's own "PATH: error: ..." becomes a note under a warning.
 std::string asNote(std::string message) {
     const std::size_t at = message.find(": error: ");
@@ -114,7 +103,7 @@ void loadPixmaps(Scene& scene, bool lenient, std::vector<std::string>* warnings)
         Pixmap& pixmap = scene.pixmaps[i];
         pixmap.image = nullptr;
         const std::string what =
-            "cannot load pixmap '" + writtenName(pixmap) + "' (makePixmap " +
+            "cannot load pixmap '" + writtenName(pixmap.loc, pixmap.file) + "' (makePixmap " +
             std::to_string(pixmap.index) + ")";
         bool duplicate = false;
         for (std::size_t j = 0; j < i && !duplicate; ++j) {

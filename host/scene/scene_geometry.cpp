@@ -22,21 +22,10 @@ namespace fs = std::filesystem;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// The file name as the scene wrote it (the reader resolved it against the
-// scene's folder), for messages.
-std::string writtenName(const SceneObject& object) {
-    if (object.loc.known()) {
-        const fs::path folder = fs::path(*object.loc.file).parent_path();
-        const fs::path relative = fs::path(object.file).lexically_relative(folder);
-        if (!relative.empty()) return relative.string();
-    }
-    return object.file;
-}
-
 std::string whatFailed(const SceneObject& object) {
     const char* verb =
         object.type == ShapeType::Extrude ? "cannot extrude '" : "cannot load mesh '";
-    return verb + writtenName(object) + "'";
+    return verb + writtenName(object.loc, object.file) + "'";
 }
 
 // The reader's own "PATH:line:col: error: ..." becomes a note under a warning.

@@ -21,13 +21,7 @@ namespace {
 // The colour of the ray eye -> look in the scene `sdl` (text as if written
 // in scenes/, so data/texels.png is found).
 Frame traceOne(const std::string& sdl, glm::dvec3 eye, glm::dvec3 look, glm::dvec3 up = {0, 1, 0}) {
-    Scene scene = parseSdl(sdl, test::kSourceDir + "/scenes/t.sdl", {});
-    loadSceneGeometry(scene, false, nullptr);
-    Camera camera;
-    camera.eye = eye;
-    camera.look = look;
-    camera.up = up;
-    return test::renderOnGpu(scene, makeCameraBasis(camera, 1, 1), {1, 1, 1});
+    return test::traceOneRay(sdl, test::kSourceDir + "/scenes/t.sdl", eye, look, up);
 }
 
 void expectColor(const Frame& f, glm::dvec3 expected, double tolerance = 2e-6) {

@@ -18,13 +18,7 @@ namespace {
 // The scene from SDL text, with its meshes built; then the ray eye -> look.
 Frame traceOne(const std::string& sdl, glm::dvec3 eye, glm::dvec3 look,
                glm::dvec3 up = {0, 0, 1}) {
-    Scene scene = parseSdl(sdl, "t.sdl", {});
-    loadSceneGeometry(scene, false, nullptr);
-    Camera camera;
-    camera.eye = eye;
-    camera.look = look;
-    camera.up = up;
-    return test::renderOnGpu(scene, makeCameraBasis(camera, 1, 1), {1, 1, 1});
+    return test::traceOneRay(sdl, "t.sdl", eye, look, up);
 }
 
 void expectHit(const Frame& f, int id, double depth, glm::dvec3 normal, double tolerance = 2e-6) {

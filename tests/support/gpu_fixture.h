@@ -5,6 +5,8 @@
 
 #include "gpu/context.h"
 #include "gpu/gpu_tracer.h"
+#include "scene/camera.h"
+#include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 
 #include <memory>
@@ -30,6 +32,20 @@ inline Frame renderOnGpu(const Scene& scene, const CameraBasis& camera,
                          bool allFeatures = false) {
     gpu::GpuTracer tracer(gpuContext(), {.shaderDirectory = kShaderDir, .allFeatures = allFeatures});
     return tracer.render(scene, camera, settings, stats);
+}
+
+// The one ray eye -> look through the scene of SDL text, its meshes built;
+// the text is read as if it were the file `scenePath` (files it names are
+// found beside that).
+inline Frame traceOneRay(const std::string& sdl, const std::string& scenePath, glm::dvec3 eye,
+                         glm::dvec3 look, glm::dvec3 up) {
+    Scene scene = parseSdl(sdl, scenePath, {});
+    loadSceneGeometry(scene, false, nullptr);
+    Camera camera;
+    camera.eye = eye;
+    camera.look = look;
+    camera.up = up;
+    return renderOnGpu(scene, makeCameraBasis(camera, 1, 1), {1, 1, 1});
 }
 
 }  // namespace vkray::test
