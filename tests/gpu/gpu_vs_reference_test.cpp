@@ -1,8 +1,9 @@
 // The GPU (float) against the CPU reference (double) on every scene in
-// scenes/ and on the corpus scenes (lenient: meshes the corpus lacks are left
-// out). Silhouette pixels may pick different objects in float and double,
-// and secondary rays that graze an edge may take different paths; everywhere
-// else the two must agree to float accuracy.
+// scenes/ and tests/data, and on the corpus scenes when VKRAY_SDL_CORPUS names
+// the corpus (lenient: missing meshes are left out). Silhouette pixels may
+// pick different objects in float and double, and secondary rays that graze
+// an edge may take different paths; everywhere else the two must agree to
+// float accuracy.
 #include "support/gpu_fixture.h"
 
 #include "image/image_io.h"
@@ -12,8 +13,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <ostream>
 
 namespace vkray {
 namespace {
@@ -71,11 +74,24 @@ void printAgreement(const std::string& what, const Agreement& a) {
                 100 * a.disagreeingFraction, kMaxAgreeingColorError);
 }
 
-class GpuVsReference : public ::testing::TestWithParam<std::string> {};
+struct SceneFile {
+    std::string path;  // for a corpus scene, its name in the corpus
+    bool inCorpus = false;
+};
+
+// gtest's name for a case in its messages (else it prints the struct's bytes).
+void PrintTo(const SceneFile& file, std::ostream* out) {
+    *out << file.path;
+}
+
+class GpuVsReference : public ::testing::TestWithParam<SceneFile> {};
 
 TEST_P(GpuVsReference, AgreeWithinStatedBounds) {
+    if (GetParam().inCorpus) VKRAY_NEED_CORPUS();
+    const std::string path =
+        GetParam().inCorpus ? test::corpusFile(GetParam().path) : GetParam().path;
     std::vector<std::string> warnings;
-    Scene scene = loadScene(GetParam(), {true}, &warnings);
+    Scene scene = loadScene(path, {true}, &warnings);
     ASSERT_FALSE(scene.objects.empty());
     const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
     for (int block : {1, 3}) {
@@ -84,7 +100,7 @@ TEST_P(GpuVsReference, AgreeWithinStatedBounds) {
         const Frame gpu = test::renderOnGpu(scene, basis, settings);
         const Frame cpu = reference::render(scene, basis, settings);
         const Agreement a = compareFrames(gpu, cpu);
-        printAgreement(fs::path(GetParam()).filename().string() + " block " +
+        printAgreement(fs::path(path).filename().string() + " block " +
                            std::to_string(block) + ":",
                        a);
         expectAgreement(a);
@@ -116,23 +132,41 @@ TEST(GpuVsReferenceSampling, WhittedSceneWithFourSamples) {
     }
 }
 
-std::vector<std::string> scenesToCompare() {
-    std::vector<std::string> files;
+std::vector<SceneFile> projectScenes() {
+    std::vector<SceneFile> files;
     for (const auto& entry : fs::directory_iterator(test::kSourceDir + "/scenes"))
-        if (entry.path().extension() == ".sdl") files.push_back(entry.path().string());
-    for (const char* corpus : {"hlScene1.dat", "bookScene.dat", "castle.dat"})
-        files.push_back(test::kCorpusDir + "/" + corpus);
-    std::sort(files.begin(), files.end());
+        if (entry.path().extension() == ".sdl") files.push_back({entry.path().string()});
+    std::sort(files.begin(), files.end(),
+              [](const SceneFile& a, const SceneFile& b) { return a.path < b.path; });
     return files;
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, GpuVsReference, ::testing::ValuesIn(scenesToCompare()),
-                         [](const auto& info) {
-                             std::string name = fs::path(info.param).stem().string();
-                             for (char& c : name)
-                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                             return name;
-                         });
+std::vector<SceneFile> dataScenes() {
+    std::vector<SceneFile> files;
+    for (const char* name : {"gallery.dat", "kitchen.dat", "tower.dat"})
+        files.push_back({test::kDataDir + "/" + name});
+    return files;
+}
+
+// By name: the list of tests must not depend on whether the corpus is there.
+std::vector<SceneFile> corpusScenes() {
+    std::vector<SceneFile> files;
+    for (const char* name : {"bookScene.dat", "castle.dat", "hlScene1.dat"})
+        files.push_back({name, true});
+    return files;
+}
+
+std::string sceneName(const ::testing::TestParamInfo<SceneFile>& info) {
+    std::string name = fs::path(info.param.path).stem().string();
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, GpuVsReference, ::testing::ValuesIn(projectScenes()), sceneName);
+INSTANTIATE_TEST_SUITE_P(TestData, GpuVsReference, ::testing::ValuesIn(dataScenes()), sceneName);
+// Skipped without VKRAY_SDL_CORPUS.
+INSTANTIATE_TEST_SUITE_P(Corpus, GpuVsReference, ::testing::ValuesIn(corpusScenes()), sceneName);
 
 }  // namespace
 }  // namespace vkray

@@ -1,7 +1,8 @@
-// Leaving code out changes nothing: every scene here and in the corpus
-// renders the same bytes in its specialised variant (only its shapes and
-// shading) and in the all-features variant; and each variant declares
-// exactly the bindings the host uploads (bindingsFor).
+// Leaving code out changes nothing: every scene in scenes/, tests/data and
+// the corpus (when VKRAY_SDL_CORPUS names it) renders the same bytes in its
+// specialised variant (only its shapes and shading) and in the all-features
+// variant; and each variant declares exactly the bindings the host uploads
+// (bindingsFor).
 #include "support/gpu_fixture.h"
 
 #include "gpu/shader_variant.h"
@@ -24,19 +25,22 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// scenes/*.sdl and the corpus's scenes (*.dat but hlArch.dat, an outline that
-// castle.dat extrudes). Lenient for all: the corpus needs it (words Hill's
-// grammar lacks), and our scenes read the same either way.
-std::vector<std::string> scenesToRender() {
+// The scenes rendered: scenes/*.sdl, tests/data's scenes and the corpus's.
+// Lenient for all: the corpus and tests/data need it (words Hill's grammar
+// lacks, missing meshes), and our scenes read the same either way.
+std::vector<std::string> projectScenes() {
     std::vector<std::string> files;
-    for (const std::string& folder : {test::kSourceDir + "/scenes", test::kCorpusDir})
-        for (const auto& entry : fs::directory_iterator(folder))
-            if ((entry.path().extension() == ".sdl" || entry.path().extension() == ".dat") &&
-                entry.path().filename() != "hlArch.dat")
-                files.push_back(entry.path().string());
+    for (const auto& entry : fs::directory_iterator(test::kSourceDir + "/scenes"))
+        if (entry.path().extension() == ".sdl") files.push_back(entry.path().string());
     std::sort(files.begin(), files.end());
     return files;
 }
+
+// tests/data's scenes that render (the others there are meshes and outlines).
+const char* const kDataScenes[] = {"gallery.dat", "kitchen.dat", "tower.dat"};
+// The corpus's scenes, by name: the list of tests must not depend on whether
+// the corpus is there (hlArch.dat is an outline that castle.dat extrudes).
+const char* const kCorpusScenes[] = {"bookScene.dat", "castle.dat", "hlScene1.dat"};
 
 // Bit patterns, so that -0 against +0 or two NaNs count as what they are.
 template <typename T>
@@ -49,8 +53,9 @@ size_t differingValues(const std::vector<T>& a, const std::vector<T>& b) {
 }
 
 struct Case {
-    std::string path;
+    std::string path;  // for a corpus scene, its name in the corpus
     int spp;
+    bool inCorpus = false;
 };
 
 // gtest's name for a case in its messages (else it prints the struct's bytes).
@@ -68,7 +73,9 @@ class SpecialisedVsAllFeatures : public ::testing::TestWithParam<Case> {};
 // Small images (96x72) keep this cheap; spp 3 covers the antialiasing code.
 TEST_P(SpecialisedVsAllFeatures, RenderTheSameBytes) {
     const Case& c = GetParam();
-    const Scene scene = loadScene(c.path, {.lenient = true}, nullptr);
+    if (c.inCorpus) VKRAY_NEED_CORPUS();
+    const std::string path = c.inCorpus ? test::corpusFile(c.path) : c.path;
+    const Scene scene = loadScene(path, {.lenient = true}, nullptr);
     ASSERT_FALSE(scene.objects.empty());
     RenderSettings settings{96, 72, 1, c.spp};
     const gpu::ShaderFeatures specialised = gpu::featuresOf(scene, settings, false);
@@ -91,21 +98,40 @@ TEST_P(SpecialisedVsAllFeatures, RenderTheSameBytes) {
     EXPECT_GT(std::count_if(a.id.begin(), a.id.end(), [](int id) { return id >= 0; }), 50);
 }
 
-std::vector<Case> cases() {
+std::vector<Case> sceneCases() {
     std::vector<Case> result;
-    for (const std::string& path : scenesToRender()) result.push_back({path, 1});
+    for (const std::string& path : projectScenes()) result.push_back({path, 1});
     for (const char* name : {"/scenes/textures.sdl", "/scenes/whitted.sdl"})
         result.push_back({test::kSourceDir + name, 3});
     return result;
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, SpecialisedVsAllFeatures, ::testing::ValuesIn(cases()),
-                         [](const auto& info) {
-                             std::string name = fs::path(info.param.path).stem().string();
-                             for (char& ch : name)
-                                 if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                             return name + "_spp" + std::to_string(info.param.spp);
-                         });
+std::vector<Case> dataCases() {
+    std::vector<Case> result;
+    for (const char* name : kDataScenes) result.push_back({test::kDataDir + "/" + name, 1});
+    return result;
+}
+
+std::vector<Case> corpusCases() {
+    std::vector<Case> result;
+    for (const char* name : kCorpusScenes) result.push_back({name, 1, true});
+    return result;
+}
+
+std::string caseName(const ::testing::TestParamInfo<Case>& info) {
+    std::string name = fs::path(info.param.path).stem().string();
+    for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+    return name + "_spp" + std::to_string(info.param.spp);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, SpecialisedVsAllFeatures, ::testing::ValuesIn(sceneCases()),
+                         caseName);
+INSTANTIATE_TEST_SUITE_P(TestData, SpecialisedVsAllFeatures, ::testing::ValuesIn(dataCases()),
+                         caseName);
+// Skipped without VKRAY_SDL_CORPUS.
+INSTANTIATE_TEST_SUITE_P(Corpus, SpecialisedVsAllFeatures, ::testing::ValuesIn(corpusCases()),
+                         caseName);
 
 // The Binding decorations of a SPIR-V module (OpDecorate %id Binding n).
 std::set<std::uint32_t> spirvBindings(const std::vector<std::uint32_t>& spirv) {

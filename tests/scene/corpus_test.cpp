@@ -1,4 +1,6 @@
-// The real SDL files of ../shared/sdl-corpus, read as users will bring them.
+// The real SDL files of the corpus (the folder VKRAY_SDL_CORPUS names; the
+// tests skip without it), read as users will bring them. tests/data holds
+// scenes of our own with the same quirks (sdl_quirks_test.cpp).
 // Every expected number here was counted by reading the files (see the
 // comments); none was copied from the reader's output.
 #include <gtest/gtest.h>
@@ -14,6 +16,7 @@
 #include "scene/scene_geometry.h"
 #include "scene/triangle_mesh.h"
 #include "scene/sdl_reader.h"
+#include "support/corpus.h"
 #include "support/error_of.h"
 
 #ifndef VKRAY_SOURCE_DIR
@@ -25,12 +28,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kCorpus = VKRAY_SOURCE_DIR "/../shared/sdl-corpus/";
+std::string corpus(const std::string& name) {
+    return test::corpusFile(name);
+}
 
 Scene load(const char* name, bool lenient, std::vector<std::string>* warnings = nullptr) {
     SdlOptions options;
     options.lenient = lenient;
-    return loadSdlFile(kCorpus + name, options, warnings);
+    return loadSdlFile(corpus(name), options, warnings);
 }
 
 long countOf(const Scene& scene, ShapeType type) {
@@ -55,19 +60,21 @@ bool samePath(const std::string& a, const std::string& b) {
 // ---- bookScene.dat: CRLF, a Latin-1 byte, `}def`, and `exponent 50` on line 6
 
 TEST(Corpus, BookSceneStrictStopsAtExponent) {
+    VKRAY_NEED_CORPUS();
     const std::string message = errorOf([] { load("bookScene.dat", false); });
     EXPECT_NE(message.find("bookScene.dat:6:1: error:"), std::string::npos) << message;
     EXPECT_NE(message.find("'exponent'"), std::string::npos) << message;
 }
 
 TEST(Corpus, BookSceneLenientHasTheTableAndTheJack) {
+    VKRAY_NEED_CORPUS();
     std::vector<std::string> warnings;
     const Scene scene = load("bookScene.dat", true, &warnings);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("bookScene.dat:6:1: warning: unknown keyword 'exponent' skipped"),
               std::string::npos)
         << warnings[0];
-    EXPECT_EQ(scene.path, kCorpus + "bookScene.dat");
+    EXPECT_EQ(scene.path, corpus("bookScene.dat"));
 
     ASSERT_EQ(scene.lights.size(), 1u);
     EXPECT_EQ(scene.lights[0].position, glm::dvec3(20, 60, 30));
@@ -81,7 +88,7 @@ TEST(Corpus, BookSceneLenientHasTheTableAndTheJack) {
     for (int i = 11; i < 19; ++i) EXPECT_EQ(scene.objects[i].type, ShapeType::Cube) << i;
 
     EXPECT_EQ(scene.objects[0].loc.line, 7);  // written in def jackPart
-    EXPECT_EQ(scene.objects[10].loc.str(), kCorpus + "bookScene.dat:27:60");
+    EXPECT_EQ(scene.objects[10].loc.str(), corpus("bookScene.dat:27:60"));
     // The material of lines 3-5; `exponent` set nothing, so the exponent is 1.
     for (const SceneObject& o : scene.objects) {
         EXPECT_EQ(o.material.ambient, glm::dvec3(0.7));
@@ -97,13 +104,14 @@ TEST(Corpus, BookSceneLenientHasTheTableAndTheJack) {
 }
 
 TEST(Corpus, BookSceneRendersEverythingItMakes) {
+    VKRAY_NEED_CORPUS();
     // Strict stops at `exponent` (line 6); lenient skips it and builds the
     // teapot (line 27) as vkray's built-in one.
-    EXPECT_NE(errorOf([&] { loadScene(kCorpus + "bookScene.dat", {}, nullptr); })
+    EXPECT_NE(errorOf([&] { loadScene(corpus("bookScene.dat"), {}, nullptr); })
                   .find("bookScene.dat:6:1: error"),
               std::string::npos);
     std::vector<std::string> warnings;
-    const Scene scene = loadScene(kCorpus + "bookScene.dat", {true}, &warnings);
+    const Scene scene = loadScene(corpus("bookScene.dat"), {true}, &warnings);
     EXPECT_EQ(scene.objects.size(), 19u);
     EXPECT_EQ(countOf(scene, ShapeType::Teapot), 1);
     ASSERT_EQ(warnings.size(), 1u);  // only `exponent`
@@ -114,6 +122,7 @@ TEST(Corpus, BookSceneRendersEverythingItMakes) {
 // ---- hlScene1.dat: Hill's own test scene, every word in the grammar ----------
 
 TEST(Corpus, HillSceneLoadsStrictly) {
+    VKRAY_NEED_CORPUS();
     std::vector<std::string> warnings;
     const Scene scene = load("hlScene1.dat", false, &warnings);
     EXPECT_TRUE(warnings.empty());
@@ -129,7 +138,7 @@ TEST(Corpus, HillSceneLoadsStrictly) {
     ASSERT_EQ(scene.objects.size(), 25u);
     EXPECT_EQ(scene.objects[0].type, ShapeType::TaperedCylinder);
     EXPECT_EQ(scene.objects[0].taper, 0.3);
-    EXPECT_EQ(scene.objects[0].loc.str(), kCorpus + "hlScene1.dat:36:22");
+    EXPECT_EQ(scene.objects[0].loc.str(), corpus("hlScene1.dat:36:22"));
     EXPECT_EQ(scene.objects[1].type, ShapeType::Cone);
     EXPECT_EQ(scene.objects[1].taper, 0);
     for (int i = 2; i < 20; ++i) EXPECT_EQ(scene.objects[i].type, ShapeType::Sphere) << i;
@@ -137,9 +146,9 @@ TEST(Corpus, HillSceneLoadsStrictly) {
     for (int i = 0; i < 5; ++i) {
         const SceneObject& mesh = scene.objects[20 + i];
         EXPECT_EQ(mesh.type, ShapeType::Mesh);
-        EXPECT_TRUE(samePath(mesh.file, kCorpus + meshes[i])) << mesh.file;
+        EXPECT_TRUE(samePath(mesh.file, corpus(meshes[i]))) << mesh.file;
     }
-    EXPECT_EQ(scene.objects[20].loc.str(), kCorpus + "hlScene1.dat:44:64");
+    EXPECT_EQ(scene.objects[20].loc.str(), corpus("hlScene1.dat:44:64"));
 
     // `use red` (line 16) before line 36; the bar's first sphere is green.
     EXPECT_EQ(scene.objects[0].material.diffuse, glm::dvec3(0.8, 0, 0.7));
@@ -156,13 +165,14 @@ TEST(Corpus, HillSceneLoadsStrictly) {
 }
 
 TEST(Corpus, HillSceneReportsItsMissingMeshesByNameAndPlace) {
+    VKRAY_NEED_CORPUS();
     // pawn.3vn, bucky.3vn, diamond.3vn, icosa.3vn and barnsimp.3vn are not
     // in the corpus: strict stops at the first, lenient leaves each out.
-    EXPECT_NE(errorOf([&] { loadScene(kCorpus + "hlScene1.dat", {}, nullptr); })
+    EXPECT_NE(errorOf([&] { loadScene(corpus("hlScene1.dat"), {}, nullptr); })
                   .find("hlScene1.dat:44:64: error: cannot load mesh 'pawn.3vn'"),
               std::string::npos);
     std::vector<std::string> warnings;
-    const Scene scene = loadScene(kCorpus + "hlScene1.dat", {true}, &warnings);
+    const Scene scene = loadScene(corpus("hlScene1.dat"), {true}, &warnings);
     EXPECT_EQ(scene.objects.size(), 20u);
     EXPECT_EQ(countOf(scene, ShapeType::Sphere), 18);
     EXPECT_EQ(countOf(scene, ShapeType::Cone), 1);
@@ -177,6 +187,7 @@ TEST(Corpus, HillSceneReportsItsMissingMeshesByNameAndPlace) {
 // ---- castle.dat: deep def nesting and the `extrude hlArch.dat` extension -----
 
 TEST(Corpus, CastleParses) {
+    VKRAY_NEED_CORPUS();
     const Scene scene = load("castle.dat", false);
     EXPECT_EQ(scene.lights.size(), 3u);
     EXPECT_EQ(scene.background, glm::dvec3(0.9));
@@ -192,13 +203,13 @@ TEST(Corpus, CastleParses) {
 
     ASSERT_GE(scene.objects.size(), 20u);
     EXPECT_EQ(scene.objects[0].type, ShapeType::Cylinder);
-    EXPECT_EQ(scene.objects[0].loc.str(), kCorpus + "castle.dat:173:2");
+    EXPECT_EQ(scene.objects[0].loc.str(), corpus("castle.dat:173:2"));
     EXPECT_EQ(scene.objects[2].type, ShapeType::TaperedCylinder);
     EXPECT_EQ(scene.objects[2].taper, 0.33);
     const SceneObject& arch = scene.objects[19];
     EXPECT_EQ(arch.type, ShapeType::Extrude);
-    EXPECT_EQ(arch.loc.str(), kCorpus + "castle.dat:206:2");
-    EXPECT_TRUE(samePath(arch.file, kCorpus + "hlArch.dat")) << arch.file;
+    EXPECT_EQ(arch.loc.str(), corpus("castle.dat:206:2"));
+    EXPECT_TRUE(samePath(arch.file, corpus("hlArch.dat"))) << arch.file;
     // Lines 200, 204, 205: translate 21 -4 -1.5, translate 5 0 0, scale 1 1.2 1.
     expectNear(worldPoint(arch, {0, 1, 0}), {26, -2.8, -1.5});
     for (const SceneObject& o : scene.objects) {
@@ -208,7 +219,8 @@ TEST(Corpus, CastleParses) {
 }
 
 TEST(Corpus, CastleLoadsWithItsExtrudedArches) {
-    const Scene scene = loadScene(kCorpus + "castle.dat", {}, nullptr);
+    VKRAY_NEED_CORPUS();
+    const Scene scene = loadScene(corpus("castle.dat"), {}, nullptr);
     EXPECT_EQ(scene.objects.size(), 220u);
     ASSERT_EQ(scene.meshes.size(), 1u);  // both `extrude hlArch.dat` share one mesh
     for (const SceneObject& o : scene.objects) {

@@ -1,5 +1,7 @@
-// 3VN meshes and extrude outlines: the corpus files load with the counts and
-// bounds read off the files by hand (awk over the tokens, not this reader),
+// 3VN meshes and extrude outlines: the corpus files (skipped without
+// VKRAY_SDL_CORPUS; tests/data's own meshes are checked in sdl_quirks_test.cpp)
+// load with the counts and bounds read off the files by hand (awk over the
+// tokens, not this reader),
 // and every malformed input is refused with its place and a message that says
 // what is wrong.
 #include "scene/mesh_file.h"
@@ -14,6 +16,7 @@
 #include <string>
 
 #include "scene/error.h"
+#include "support/corpus.h"
 #include "support/error_of.h"
 
 #ifndef VKRAY_SOURCE_DIR
@@ -25,7 +28,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kCorpus = VKRAY_SOURCE_DIR "/../shared/sdl-corpus/";
+const std::string kData = VKRAY_SOURCE_DIR "/tests/data/";
+
+std::string corpus(const std::string& name) {
+    return test::corpusFile(name);
+}
 
 std::string meshError(const std::string& text) {
     return errorOf([&] { parse3vn(text, "m.3vn"); });
@@ -50,13 +57,14 @@ void expectBounds(const PolygonMesh& mesh, glm::dvec3 lo, glm::dvec3 hi) {
     }
 }
 
-// ---- the corpus ----------------------------------------------------------------
+// ---- the corpus (skipped without VKRAY_SDL_CORPUS) -------------------------------
 
-TEST(Mesh3vn, DodecahedronWithCrlfAndTinyExponents) {
+TEST(Mesh3vn, CorpusDodecahedronWithCrlfAndTinyExponents) {
+    VKRAY_NEED_CORPUS();
     // Header "20 12 12"; twelve pentagons; vertices within [-1, 1]^3 (the
     // vertex "1 0 0.381966" and its mirror images reach the faces of the cube).
-    const PolygonMesh mesh = load3vn(kCorpus + "Dodeca.3vn");
-    EXPECT_EQ(mesh.path, kCorpus + "Dodeca.3vn");
+    const PolygonMesh mesh = load3vn(corpus("Dodeca.3vn"));
+    EXPECT_EQ(mesh.path, corpus("Dodeca.3vn"));
     EXPECT_EQ(mesh.vertices.size(), 20u);
     EXPECT_EQ(mesh.normals.size(), 12u);
     ASSERT_EQ(mesh.faces.size(), 12u);
@@ -76,9 +84,10 @@ TEST(Mesh3vn, DodecahedronWithCrlfAndTinyExponents) {
     EXPECT_EQ(mesh.normalIndicesOf(mesh.faces[11])[0], 11);
 }
 
-TEST(Mesh3vn, ArchHasOneLineFaces) {
+TEST(Mesh3vn, CorpusArchHasOneLineFaces) {
+    VKRAY_NEED_CORPUS();
     // Header "164 44 160"; every face is "4 a b c d i j k l" on one line.
-    const PolygonMesh mesh = load3vn(kCorpus + "arch.3vn");
+    const PolygonMesh mesh = load3vn(corpus("arch.3vn"));
     EXPECT_EQ(mesh.vertices.size(), 164u);
     EXPECT_EQ(mesh.normals.size(), 44u);
     EXPECT_EQ(mesh.faces.size(), 160u);
@@ -88,11 +97,12 @@ TEST(Mesh3vn, ArchHasOneLineFaces) {
     EXPECT_EQ(mesh.faces.back().line, 369);
 }
 
-TEST(Mesh3vn, PillarLoadsQuickly) {
+TEST(Mesh3vn, CorpusPillarLoadsQuickly) {
+    VKRAY_NEED_CORPUS();
     // Header "1140 1140 1110", all quads; z reaches +-7.956175 (line 296 and
     // its mirror). 104 KB: a 470 KB mesh takes under 5 times as long.
     const auto start = std::chrono::steady_clock::now();
-    const PolygonMesh mesh = load3vn(kCorpus + "pillar.3vn");
+    const PolygonMesh mesh = load3vn(corpus("pillar.3vn"));
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(mesh.vertices.size(), 1140u);
@@ -246,10 +256,11 @@ TEST(Mesh3vnErrors, BinaryGarbageIsQuotedShort) {
 
 // ---- outlines -------------------------------------------------------------------
 
-TEST(Outline, HillsArch) {
+TEST(Outline, CorpusHillsArch) {
+    VKRAY_NEED_CORPUS();
     // hlArch.dat: "36", then 36 CRLF lines of "x y", from (-3, 0) to (5, 0).
-    const Outline outline = loadOutline(kCorpus + "hlArch.dat");
-    EXPECT_EQ(outline.path, kCorpus + "hlArch.dat");
+    const Outline outline = loadOutline(corpus("hlArch.dat"));
+    EXPECT_EQ(outline.path, corpus("hlArch.dat"));
     ASSERT_EQ(outline.points.size(), 36u);
     EXPECT_EQ(outline.points.front(), glm::dvec2(-3, 0));
     EXPECT_EQ(outline.points[2], glm::dvec2(-3, 1));
@@ -282,8 +293,8 @@ TEST(OutlineErrors, EachWithItsPlace) {
 TEST(MeshFiles, MissingFileOrFolderIsAnErrorNamingIt) {
     EXPECT_EQ(errorOf([] { load3vn("no/such.3vn"); }),
               "no/such.3vn: error: cannot read mesh file: No such file or directory");
-    EXPECT_EQ(errorOf([] { loadOutline(kCorpus); }),
-              kCorpus + ": error: cannot read outline file: Is a directory");
+    EXPECT_EQ(errorOf([] { loadOutline(kData); }),
+              kData + ": error: cannot read outline file: Is a directory");
 }
 
 TEST(MeshFiles, ErrorsInAFileNameItsPath) {

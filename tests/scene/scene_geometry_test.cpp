@@ -14,6 +14,7 @@
 
 #include "scene/error.h"
 #include "scene/triangle_mesh.h"
+#include "support/corpus.h"
 #include "support/error_of.h"
 
 #ifndef VKRAY_SOURCE_DIR
@@ -23,20 +24,25 @@
 namespace vkray {
 namespace {
 
-const std::string kCorpus = VKRAY_SOURCE_DIR "/../shared/sdl-corpus/";
+// The repository's own scenes and meshes (wedge.3vn, pyramid.3vn, ...).
+const std::string kData = VKRAY_SOURCE_DIR "/tests/data/";
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string corpus(const std::string& name) {
+    return test::corpusFile(name);
+}
 
 Scene corpusScene(const char* name, bool lenient, std::vector<std::string>* warnings) {
     SdlOptions options;
     options.lenient = lenient;
-    return loadSdlFile(kCorpus + name, options, warnings);
+    return loadSdlFile(corpus(name), options, warnings);
 }
 
-// SDL text as if it were a file in the corpus folder (so mesh paths find
-// the corpus meshes), with its geometry loaded.
+// SDL text as if it were a file in tests/data (so mesh paths find the meshes
+// there), with its geometry loaded.
 Scene sceneOf(const std::string& text, bool lenient = false,
               std::vector<std::string>* warnings = nullptr) {
-    Scene scene = parseSdl(text, kCorpus + "test.sdl", SdlOptions{}, warnings);
+    Scene scene = parseSdl(text, kData + "test.sdl", SdlOptions{}, warnings);
     loadSceneGeometry(scene, lenient, warnings);
     return scene;
 }
@@ -55,9 +61,10 @@ void expectBox(const Aabb& box, glm::dvec3 lo, glm::dvec3 hi, double tolerance =
     }
 }
 
-// ---- meshes in corpus scenes ----------------------------------------------------
+// ---- meshes in corpus scenes (skipped without VKRAY_SDL_CORPUS) -------------------
 
-TEST(SceneGeometry, HillSceneLenientLeavesOutItsMissingMeshesByName) {
+TEST(SceneGeometry, CorpusHillSceneLenientLeavesOutItsMissingMeshesByName) {
+    VKRAY_NEED_CORPUS();
     std::vector<std::string> warnings;
     Scene scene = corpusScene("hlScene1.dat", true, &warnings);
     ASSERT_EQ(scene.objects.size(), 25u);  // 20 shapes and 5 meshes (corpus tests)
@@ -72,7 +79,7 @@ TEST(SceneGeometry, HillSceneLenientLeavesOutItsMissingMeshesByName) {
                                  {"49:31", "barnsimp.3vn"}};
     ASSERT_EQ(warnings.size(), 5u);
     for (int i = 0; i < 5; ++i) {
-        const std::string firstLine = kCorpus + "hlScene1.dat:" + expected[i][0] +
+        const std::string firstLine = corpus("hlScene1.dat:") + expected[i][0] +
                                       ": warning: cannot load mesh '" + expected[i][1] +
                                       "'; left out\n";
         EXPECT_EQ(warnings[i].substr(0, firstLine.size()), firstLine);
@@ -84,18 +91,20 @@ TEST(SceneGeometry, HillSceneLenientLeavesOutItsMissingMeshesByName) {
     for (const SceneObject& object : scene.objects) EXPECT_NE(object.type, ShapeType::Mesh);
 }
 
-TEST(SceneGeometry, StrictMissingMeshNamesTheMeshWordAndThePath) {
+TEST(SceneGeometry, CorpusStrictMissingMeshNamesTheMeshWordAndThePath) {
+    VKRAY_NEED_CORPUS();
     Scene scene = corpusScene("hlScene1.dat", false, nullptr);
     const std::string message = errorOf([&] { loadSceneGeometry(scene, false, nullptr); });
     const std::string firstLine =
-        kCorpus + "hlScene1.dat:44:64: error: cannot load mesh 'pawn.3vn'\n";
+        corpus("hlScene1.dat:44:64: error: cannot load mesh 'pawn.3vn'\n");
     EXPECT_EQ(message.substr(0, firstLine.size()), firstLine);
     EXPECT_TRUE(
-        contains(message, "sdl-corpus/pawn.3vn: error: cannot read mesh file: No such file"))
+        contains(message, corpus("pawn.3vn: error: cannot read mesh file: No such file")))
         << message;
 }
 
-TEST(SceneGeometry, BookSceneTeapotIsTheBuiltInOne) {
+TEST(SceneGeometry, CorpusBookSceneTeapotIsTheBuiltInOne) {
+    VKRAY_NEED_CORPUS();
     std::vector<std::string> warnings;
     Scene scene = corpusScene("bookScene.dat", true, &warnings);
     const std::size_t objects = scene.objects.size();
@@ -114,7 +123,8 @@ TEST(SceneGeometry, BookSceneTeapotIsTheBuiltInOne) {
     EXPECT_EQ(teapots, 1);
 }
 
-TEST(SceneGeometry, CastleExtrudesItsArchOnceForBothUses) {
+TEST(SceneGeometry, CorpusCastleExtrudesItsArchOnceForBothUses) {
+    VKRAY_NEED_CORPUS();
     Scene scene = corpusScene("castle.dat", false, nullptr);
     loadSceneGeometry(scene, false, nullptr);  // strict: everything loads
     ASSERT_EQ(scene.meshes.size(), 1u);
@@ -136,10 +146,10 @@ TEST(SceneGeometry, CastleExtrudesItsArchOnceForBothUses) {
 
 TEST(SceneGeometry, EachFileLoadsOnceHoweverItIsSpelled) {
     const Scene scene = sceneOf(
-        "mesh Dodeca.3vn translate 3 0 0 mesh ./Dodeca.3vn mesh ../sdl-corpus/Dodeca.3vn "
-        "mesh pillar.3vn dodecahedron tetrahedron dodecahedron");
+        "mesh wedge.3vn translate 3 0 0 mesh ./wedge.3vn mesh ../data/wedge.3vn "
+        "mesh pyramid.3vn dodecahedron tetrahedron dodecahedron");
     ASSERT_EQ(scene.objects.size(), 7u);
-    ASSERT_EQ(scene.meshes.size(), 4u);  // Dodeca.3vn, pillar.3vn, 2 built-ins
+    ASSERT_EQ(scene.meshes.size(), 4u);  // wedge.3vn, pyramid.3vn, 2 built-ins
     EXPECT_EQ(scene.objects[0].mesh, 0);
     EXPECT_EQ(scene.objects[1].mesh, 0);
     EXPECT_EQ(scene.objects[2].mesh, 0);
@@ -147,15 +157,16 @@ TEST(SceneGeometry, EachFileLoadsOnceHoweverItIsSpelled) {
     EXPECT_EQ(scene.objects[4].mesh, 2);
     EXPECT_EQ(scene.objects[5].mesh, 3);
     EXPECT_EQ(scene.objects[6].mesh, 2);
-    EXPECT_EQ(scene.meshes[0]->name, "Dodeca.3vn");
-    EXPECT_EQ(scene.meshes[0]->triangles.size(), 36u);
+    EXPECT_EQ(scene.meshes[0]->name, "wedge.3vn");
+    EXPECT_EQ(scene.meshes[0]->triangles.size(), 8u);  // 2 triangles and 3 quads
+    EXPECT_EQ(scene.meshes[1]->name, "pyramid.3vn");
     EXPECT_EQ(scene.meshes[2]->name, "built-in dodecahedron");
     EXPECT_EQ(scene.meshes[3]->name, "built-in tetrahedron");
 }
 
 TEST(SceneGeometry, MeshesInsideBooleans) {
     // Operands get their meshes; a missing one is an error at its own word...
-    const Scene good = sceneOf("union dodecahedron difference sphere mesh Dodeca.3vn");
+    const Scene good = sceneOf("union dodecahedron difference sphere mesh wedge.3vn");
     ASSERT_EQ(good.objects.size(), 1u);
     EXPECT_EQ(good.objects[0].operands[0].mesh, 0);
     EXPECT_EQ(good.objects[0].operands[1].operands[1].mesh, 1);
@@ -163,7 +174,7 @@ TEST(SceneGeometry, MeshesInsideBooleans) {
     EXPECT_EQ(errorOf([] {
                   sceneOf("sphere\nunion sphere\n  difference cube mesh gone.3vn");
               }).substr(0, 200),
-              (kCorpus + "test.sdl:3:19: error: cannot load mesh 'gone.3vn'\n" + kCorpus +
+              (kData + "test.sdl:3:19: error: cannot load mesh 'gone.3vn'\n" + kData +
                "gone.3vn: error: cannot read mesh file: No such file or directory")
                   .substr(0, 200));
     // ... and lenient leaves out the whole top-level boolean, with the meshes
@@ -180,10 +191,10 @@ TEST(SceneGeometry, MeshesInsideBooleans) {
     EXPECT_EQ(lenient.meshes[0]->name, "built-in dodecahedron");
     EXPECT_EQ(lenient.objects[2].mesh, 0);
     ASSERT_EQ(warnings.size(), 1u);
-    EXPECT_TRUE(contains(warnings[0], kCorpus +
+    EXPECT_TRUE(contains(warnings[0], kData +
                                           "test.sdl:3:19: warning: cannot load mesh "
                                           "'gone.3vn'; the 'union' at " +
-                                          kCorpus + "test.sdl:2:1 that holds it is left out\n"))
+                                          kData + "test.sdl:2:1 that holds it is left out\n"))
         << warnings[0];
 }
 
@@ -193,12 +204,13 @@ TEST(SceneGeometry, MissingOutlineIsReportedAtTheExtrudeWord) {
     EXPECT_EQ(scene.objects.size(), 1u);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_EQ(warnings[0].substr(0, warnings[0].find('\n')),
-              kCorpus + "test.sdl:1:1: warning: cannot extrude 'missing.dat'; left out");
+              kData + "test.sdl:1:1: warning: cannot extrude 'missing.dat'; left out");
 }
 
-TEST(SceneGeometry, LoadSceneLoadsMeshes) {
+TEST(SceneGeometry, CorpusLoadSceneLoadsMeshes) {
+    VKRAY_NEED_CORPUS();
     std::vector<std::string> warnings;
-    const Scene scene = loadScene(kCorpus + "hlScene1.dat", SdlOptions{.lenient = true}, &warnings);
+    const Scene scene = loadScene(corpus("hlScene1.dat"), SdlOptions{.lenient = true}, &warnings);
     int meshWarnings = 0;
     for (const std::string& w : warnings) meshWarnings += contains(w, "cannot load mesh") ? 1 : 0;
     EXPECT_EQ(meshWarnings, 5);

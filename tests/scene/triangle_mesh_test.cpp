@@ -1,5 +1,6 @@
-// Triangle meshes: the corpus 3VN files, extruded outlines and the built-in
-// solids, checked against counts, bounds and volumes worked out by hand.
+// Triangle meshes: the corpus 3VN files (skipped without VKRAY_SDL_CORPUS),
+// extruded outlines and the built-in solids, checked against counts, bounds
+// and volumes worked out by hand.
 #include "scene/triangle_mesh.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include <string>
 
 #include "scene/error.h"
+#include "support/corpus.h"
 #include "support/error_of.h"
 
 #ifndef VKRAY_SOURCE_DIR
@@ -30,7 +32,9 @@ double threadSeconds() {
     return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
 }
 
-const std::string kCorpus = VKRAY_SOURCE_DIR "/../shared/sdl-corpus/";
+std::string corpus(const std::string& name) {
+    return test::corpusFile(name);
+}
 const double kSqrt2 = std::numbers::sqrt2, kSqrt3 = std::numbers::sqrt3;
 const double kSqrt5 = std::sqrt(5.0);
 
@@ -81,10 +85,11 @@ void expectWellFormed(const TriangleMesh& mesh) {
 // ---- 3VN -----------------------------------------------------------------------
 
 TEST(TriangleMesh3vn, CorpusDodecahedron) {
+    VKRAY_NEED_CORPUS();
     // 12 pentagons: 12 * (5 - 2) = 36 triangles. Its vertices are the
     // dodecahedron (+-1,+-1,+-1), (0, +-1/phi, +-phi) scaled by 1/phi (to 6
     // digits): within [-1, 1]^3, edge a = 2 / phi^2, volume (15 + 7 sqrt 5) / 4 a^3.
-    const TriangleMesh mesh = meshFrom3vn(load3vn(kCorpus + "Dodeca.3vn"));
+    const TriangleMesh mesh = meshFrom3vn(load3vn(corpus("Dodeca.3vn")));
     EXPECT_EQ(mesh.name, "Dodeca.3vn");
     EXPECT_EQ(mesh.positions.size(), 20u);
     EXPECT_EQ(mesh.triangles.size(), 36u);
@@ -96,14 +101,15 @@ TEST(TriangleMesh3vn, CorpusDodecahedron) {
 }
 
 TEST(TriangleMesh3vn, CorpusArchAndPillar) {
+    VKRAY_NEED_CORPUS();
     // arch.3vn: 160 quads -> 320 triangles; pillar.3vn: 1110 quads -> 2220
     // (bounds as the mesh_file tests read them off the files).
-    const TriangleMesh arch = meshFrom3vn(load3vn(kCorpus + "arch.3vn"));
+    const TriangleMesh arch = meshFrom3vn(load3vn(corpus("arch.3vn")));
     EXPECT_EQ(arch.triangles.size(), 320u);
     expectBounds(arch.bounds, {-15, 0, 0}, {15, 50, 10});
     expectWellFormed(arch);
     const double start = threadSeconds();
-    const TriangleMesh pillar = meshFrom3vn(load3vn(kCorpus + "pillar.3vn"));
+    const TriangleMesh pillar = meshFrom3vn(load3vn(corpus("pillar.3vn")));
     const double seconds = threadSeconds() - start;
     EXPECT_EQ(pillar.triangles.size(), 2220u);
     expectBounds(pillar.bounds, {-8, 0, -7.956175}, {8, 60, 7.956175});
@@ -189,7 +195,8 @@ void expectPrism(const TriangleMesh& mesh, double area) {
     EXPECT_EQ(mesh.bounds.hi.z, 1);
 }
 
-TEST(TriangleMeshExtrude, HillsArchIsReadAsAQuadStrip) {
+TEST(TriangleMeshExtrude, CorpusHillsArchIsReadAsAQuadStrip) {
+    VKRAY_NEED_CORPUS();
     // hlArch.dat's 36 points pair up as rungs (-3,0)-(-5,0), (-3,1)-(-5,1), ...:
     // Hill's quad strip. Its outline: the block [-5, 5] x [0, 7] (area 70)
     // less the opening under the inner points; by trapezoids over x on the
@@ -197,7 +204,7 @@ TEST(TriangleMeshExtrude, HillsArchIsReadAsAQuadStrip) {
     // that plus the 0.4-wide middle at height 6 (2.4) is 27.85. Area 42.15;
     // the prism (height 1) has that volume. 36 outline points: 72 side
     // triangles, 2 * 34 cap triangles.
-    const Outline arch = loadOutline(kCorpus + "hlArch.dat");
+    const Outline arch = loadOutline(corpus("hlArch.dat"));
     const TriangleMesh mesh = extrudeOutline(arch);
     EXPECT_EQ(mesh.name, "hlArch.dat");
     EXPECT_EQ(mesh.positions.size(), 72u);

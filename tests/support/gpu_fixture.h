@@ -8,6 +8,7 @@
 #include "scene/camera.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
+#include "support/corpus.h"
 
 #include <memory>
 #include <string>
@@ -20,7 +21,10 @@ namespace vkray::test {
 
 inline const std::string kSourceDir = VKRAY_SOURCE_DIR;
 inline const std::string kShaderDir = kSourceDir + "/shaders";
-inline const std::string kCorpusDir = kSourceDir + "/../shared/sdl-corpus";
+// Scenes of the repository's own with the quirks of real files (CRLF,
+// Latin-1 comments, Hill's words vkray lacks, missing meshes).
+inline const std::string kDataDir = kSourceDir + "/tests/data";
+// The corpus of real scenes: support/corpus.h (corpusDir(), VKRAY_NEED_CORPUS()).
 
 inline gpu::Context& gpuContext() {
     static std::unique_ptr<gpu::Context> context = std::make_unique<gpu::Context>();
