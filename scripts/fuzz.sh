@@ -6,8 +6,9 @@
 #
 #   scripts/fuzz.sh [SECONDS] [TARGET...]     e.g. scripts/fuzz.sh 600 sdl_fuzz
 #
-# Seeds come from ../shared/sdl-corpus/, scenes/ and fuzz/seeds/, copied into
-# build-fuzz/seeds/; what the fuzzers learn grows build-fuzz/corpus/ from run
+# Seeds come from tests/data/, scenes/ and fuzz/seeds/, and from the corpus of
+# real SDL scenes when VKRAY_SDL_CORPUS names its folder; they are copied into
+# build-fuzz/seeds/. What the fuzzers learn grows build-fuzz/corpus/ from run
 # to run. Nothing is written outside build-fuzz/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,7 +23,20 @@ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   >/dev/null
 cmake --build build-fuzz --target vkray_fuzzers
 
-corpus=../shared/sdl-corpus
+# tests/data: scenes (*.dat), meshes (*.3vn) and extrude outlines (*_outline.dat).
+data_scenes=() data_outlines=()
+for f in tests/data/*.dat; do
+  case "$f" in *_outline.dat) data_outlines+=("$f") ;; *) data_scenes+=("$f") ;; esac
+done
+corpus_scenes=() corpus_meshes=() corpus_outlines=()
+corpus="${VKRAY_SDL_CORPUS:-}"
+if [ -n "$corpus" ] && [ -d "$corpus" ]; then
+  corpus_scenes=("$corpus"/bookScene.dat "$corpus"/castle.dat "$corpus"/hlScene1.dat)
+  corpus_meshes=("$corpus"/*.3vn)
+  corpus_outlines=("$corpus"/hlArch.dat)
+elif [ -n "$corpus" ]; then
+  echo "fuzz: VKRAY_SDL_CORPUS='$corpus' is not a folder; seeds from the repository only" >&2
+fi
 seed() {  # seed TARGET FILE...: fresh copies, so a changed source seed is seen
   local dir="build-fuzz/seeds/$1"
   shift
@@ -30,10 +44,9 @@ seed() {  # seed TARGET FILE...: fresh copies, so a changed source seed is seen
   for f in "$@"; do [ -f "$f" ] && cp "$f" "$dir/"; done
   return 0
 }
-seed sdl_fuzz "$corpus"/bookScene.dat "$corpus"/castle.dat "$corpus"/hlScene1.dat scenes/*.sdl \
-  fuzz/seeds/sdl/*
-seed mesh3vn_fuzz "$corpus"/*.3vn fuzz/seeds/mesh/*
-seed outline_fuzz "$corpus"/hlArch.dat fuzz/seeds/outline/*
+seed sdl_fuzz "${corpus_scenes[@]}" "${data_scenes[@]}" scenes/*.sdl fuzz/seeds/sdl/*
+seed mesh3vn_fuzz "${corpus_meshes[@]}" tests/data/*.3vn fuzz/seeds/mesh/*
+seed outline_fuzz "${corpus_outlines[@]}" "${data_outlines[@]}" fuzz/seeds/outline/*
 seed image_fuzz fuzz/seeds/image/*
 
 # Per target: longest input, dictionary. Limits keep each run quick; the
