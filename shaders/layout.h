@@ -52,12 +52,15 @@ VKRAY_CONST(uint, BINDING_PIXMAPS, 11u);      // pixmap variant: GpuPixmap[] (sl
 VKRAY_CONST(uint, BINDING_TEXELS, 12u);       // pixmap variant: float[] rgb texels of all pixmaps
 VKRAY_CONST(uint, BINDING_DOUBLE_CAMERA, 13u);   // fp64 variant: GpuDoubleCamera
 VKRAY_CONST(uint, BINDING_DOUBLE_OBJECTS, 14u);  // fp64 variant: GpuDoubleObject[], like GpuObject[]
+VKRAY_CONST(uint, BINDING_PROGRESS, 15u);  // GpuRayProgress[]: each ray's state between dispatches
+VKRAY_CONST(uint, BINDING_STATUS, 16u);    // GpuDispatchStatus: what one dispatch left undone
+VKRAY_CONST(uint, BINDING_RAY_STACK, 17u); // reflection/refraction variants: GpuRayTask[] (or double)
 
 // Bounds of the shader's fixed-size stacks; the host refuses scenes beyond them.
 VKRAY_CONST(uint, BVH_STACK_SIZE, 48u);  // BVH depth (kMaxBvhDepth on the host)
 VKRAY_CONST(uint, CSG_MAX_SPANS, 8u);    // inside-spans per CSG list
 VKRAY_CONST(uint, CSG_MAX_STACK, 4u);    // CSG lists alive at once while evaluating a tree
-VKRAY_CONST(uint, MAX_RECURSION_DEPTH, 8u);  // maxRecursionDepth (kMaxRecursionDepth on the host)
+VKRAY_CONST(uint, MAX_RECURSION_DEPTH, 64u);  // maxRecursionDepth (kMaxRecursionDepth on the host)
 VKRAY_CONST(uint, MEDIUM_STACK_SIZE, 4u);    // nested transparent objects a ray remembers
 
 // A secondary ray's origin moves off the surface along the normal by
@@ -158,7 +161,8 @@ struct FrameParams {
     uvec4 image;         // x = width, y = height, z = block size, w = object count
     uvec4 counts;        // x = light count; y = BVH nodes over objects (0: no BVH);
                          // z, w = first and count of unbounded objects in the object index
-    uvec4 sampling;      // x = samples per pixel, y = seed, z = maxRecursionDepth; w unused
+    uvec4 sampling;      // x = samples per pixel, y = seed, z = maxRecursionDepth,
+                         // w = pending-ray stack entries per ray (maxRecursionDepth + 1)
 };
 
 // The fp64 variant (--precision fp64) reads the ray geometry's inputs in
@@ -176,12 +180,48 @@ struct GpuDoubleObject {
     dvec4 objectFromWorld[3];  // GpuObject.objectFromWorld, unrounded
     dvec4 parameters;          // x = a tapered cylinder's s (GpuObject.shape.y); yzw unused
 };
+
+// GpuRayTask with its origin and direction in double.
+struct GpuDoubleRayTask {
+    dvec4 origin;    // xyz; w = level
+    dvec4 direction;  // xyz; w = medium depth
+    vec4 weight;
+    vec4 speeds;
+};
 #endif
 
-// Where the current dispatch writes: the tile's origin and size in pixels
-// (push constant).
+// Where the current dispatch writes, and how much work each ray may do in
+// it (push constant). llvmpipe ends every loop of an invocation, silently,
+// once 65 535 loop turns have run in it; so a ray's work is cut into
+// dispatches of at most `work.x` counted turns, its state kept in
+// GpuRayProgress between them, and a canary loop of `work.z` turns at the
+// end of each invocation tells whether the driver cut any loop short
+// (docs/lavapipe.md, "The loop limit").
 struct TileParams {
     uvec4 tile;  // x, y = origin; z, w = width, height
+    uvec4 work;  // x = turn budget of this dispatch, y = 1 on the tile's first dispatch,
+                 // z = canary turns, w = rays per tile row
+};
+
+// One ray's (one invocation's) state between the dispatches of its tile.
+// It is done when all its samples are.
+struct GpuRayProgress {
+    vec4 sum;    // rgb: the colours of its finished samples, summed in order;
+                 // w = how many are finished (uint bits)
+    vec4 color;  // rgb: the current sample's colour so far; w = pending rays on its stack (uint bits)
+};
+
+// Written by atomics during one dispatch; the host zeroes it before each.
+struct GpuDispatchStatus {
+    uvec4 counts;  // x = rays that paused with work left, y = invocations whose canary ran short
+};
+
+// A ray waiting on a ray's pending-ray stack (reflection and refraction).
+struct GpuRayTask {
+    vec4 origin;     // xyz; w = level (a whole number; 0: the primary ray)
+    vec4 direction;  // xyz; w = medium depth (a whole number)
+    vec4 weight;     // rgb; w unused
+    vec4 speeds;     // speeds of light of the media it is inside, innermost last
 };
 
 // One pixel of the output tile.

@@ -61,14 +61,22 @@ VKRAY_SAMPLING_FN float belowOne(float x) {
 // (k mod m, k div m) of an m x ceil(n / m) grid, m = ceil(sqrt(n)). Every
 // cell of the first ceil(n / m) - 1 rows, and the first n - m (rows - 1)
 // cells of the last, holds exactly one sample.
+VKRAY_SAMPLING_FN float gridOffsetX(uint seed, uint pixel, uint k, uint columns) {
+    return belowOne((float(k % columns) + sampleRandom(seed, pixel, k, 0u)) / float(columns));
+}
+
+VKRAY_SAMPLING_FN float gridOffsetY(uint seed, uint pixel, uint k, uint columns, uint rows) {
+    return belowOne((float(k / columns) + sampleRandom(seed, pixel, k, 1u)) / float(rows));
+}
+
+// The same, the grid worked out from n (the shader works it out once per
+// pixel instead: each sampleColumns is a loop of ceil(sqrt(n)) turns).
 VKRAY_SAMPLING_FN float sampleOffsetX(uint seed, uint pixel, uint k, uint n) {
-    const uint m = sampleColumns(n);
-    return belowOne((float(k % m) + sampleRandom(seed, pixel, k, 0u)) / float(m));
+    return gridOffsetX(seed, pixel, k, sampleColumns(n));
 }
 
 VKRAY_SAMPLING_FN float sampleOffsetY(uint seed, uint pixel, uint k, uint n) {
-    const uint m = sampleColumns(n);
-    return belowOne((float(k / m) + sampleRandom(seed, pixel, k, 1u)) / float(sampleRows(n)));
+    return gridOffsetY(seed, pixel, k, sampleColumns(n), sampleRows(n));
 }
 
 #ifdef __cplusplus

@@ -131,29 +131,71 @@ struct RayTask {
     Medium medium;
 };
 
-// Rays waiting: taking one adds at most two, one level deeper, so
-// maxRecursionDepth + 1 entries hold the deepest tree (1 without secondary
-// rays).
-#if VKRAY_REFLECTION || VKRAY_REFRACTION
-const uint RAY_STACK_SIZE = MAX_RECURSION_DEPTH + 1u;
+// Rays waiting. Taking one adds at most two, one level deeper, so
+// maxRecursionDepth + 1 entries (frame.sampling.w) hold the deepest tree.
+// With secondary rays they live in a storage buffer, frame.sampling.w per
+// invocation, so that they outlast a dispatch; without, the one pending ray
+// is a sample's primary ray, made again when a dispatch resumes.
+#define VKRAY_RAY_STACK (VKRAY_REFLECTION || VKRAY_REFRACTION)
+#if VKRAY_RAY_STACK
+#if VKRAY_PRECISION_FP64
+#define PendingRayEntry GpuDoubleRayTask
 #else
-const uint RAY_STACK_SIZE = 1u;
+#define PendingRayEntry GpuRayTask
+#endif
+layout(std430, set = 0, binding = BINDING_RAY_STACK) buffer RayStackBlock { PendingRayEntry pendingRays[]; };
+uint rayStackBase;  // this invocation's first entry
+
+void pushRay(inout uint top, RayTask task) {
+    pendingRays[rayStackBase + top++] =
+        PendingRayEntry(rvec4(task.origin, real(task.level)),
+                        rvec4(task.direction, real(task.medium.depth)), vec4(task.weight, 0.0),
+                        task.medium.speeds);
+}
+#else
+RayTask pendingRay;
+
+void pushRay(inout uint top, RayTask task) {
+    pendingRay = task;
+    ++top;
+}
 #endif
 
-// What the ray origin + t direction sees: Hill's shade() down to
-// maxRecursionDepth, its recursion unrolled. The tree of reflected and
-// refracted rays is walked depth first with a stack of rays; the lights of
-// a hit are visited one per step, each with its shadow feeler, so that the
-// loop walks the scene (walkScene) in one place only. `primary` and
-// `primaryNormal` (m) describe the first hit, for the AOVs.
-vec3 radiance(rvec3 origin, rvec3 direction, out Hit primary, out vec3 primaryNormal) {
-    primaryNormal = vec3(0.0);
-    vec3 color = vec3(0.0);
-    RayTask stack[RAY_STACK_SIZE];
-    uint top = 0u;
-    stack[top++] = RayTask(origin, direction, vec3(1.0), 0u, Medium(vec4(1.0), 0u));
+RayTask popRay(inout uint top) {
+#if VKRAY_RAY_STACK
+    PendingRayEntry entry = pendingRays[rayStackBase + --top];
+    return RayTask(entry.origin.xyz, entry.direction.xyz, entry.weight.rgb, uint(entry.origin.w),
+                   Medium(entry.speeds, uint(entry.direction.w)));
+#else
+    --top;
+    return pendingRay;
+#endif
+}
+
+RayTask primaryTask(uint k) {
+    return RayTask(rayEye(), sampleDirection(k), vec3(1.0), 0u, Medium(vec4(1.0), 0u));
+}
+
+// This invocation's samples, from where `ray` (GpuRayProgress) says an
+// earlier dispatch left them, until they are done or loopTurns has passed
+// `budget`. Each sample is Hill's shade() down to maxRecursionDepth, its
+// recursion unrolled: the tree of reflected and refracted rays is walked
+// depth first with the stack of pending rays; the lights of a hit are
+// visited one per step, each with its shadow feeler, so that the loop walks
+// the scene (walkScene) in one place only. A dispatch stops only between two
+// rays, when all that is pending is on the stack, so a paused sample goes
+// on as if it had never stopped: the image does not depend on the budget.
+// Sample 0's primary hit gives the AOVs, written to `pixels[firstPixel]`.
+void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint budget) {
+    uint sampleIndex = floatBitsToUint(ray.sum.w);
+    uint top = floatBitsToUint(ray.color.w);
+    vec3 sum = ray.sum.rgb, color = ray.color.rgb;
+    if (top == 0u) pushRay(top, primaryTask(sampleIndex));  // the first dispatch
+#if !VKRAY_RAY_STACK
+    else pendingRay = primaryTask(sampleIndex);  // a paused primary-only sample has only its primary ray left
+#endif
     // The hit whose lights are being visited (while light < the light count).
-    RayTask ray;
+    RayTask task;
     Surface s;
     GpuObject object;
     vec3 k;
@@ -161,7 +203,9 @@ vec3 radiance(rvec3 origin, rvec3 direction, out Hit primary, out vec3 primaryNo
 #if VKRAY_SHADOWS
     rvec3 feelerOrigin;
 #endif
+    bool tracedOne = false;
     while (true) {
+        ++loopTurns;
         // This step's walk: the feeler toward the next light, or the next ray.
         rvec3 walkOrigin, walkDirection;
         real walkMax = INFINITY;
@@ -178,16 +222,26 @@ vec3 radiance(rvec3 origin, rvec3 direction, out Hit primary, out vec3 primaryNo
 #endif
             {
                 // Behind the surface (a = 0), or no object that could shadow.
-                color += ray.weight * lightTerm(object, s, -vec3(ray.direction), k, light,
-                                                facing ? 1.0 : 0.0, ray.level == 0u);
+                color += task.weight * lightTerm(object, s, -vec3(task.direction), k, light,
+                                                 facing ? 1.0 : 0.0, task.level == 0u && sampleIndex == 0u);
                 ++light;
                 continue;
             }
         } else {
-            if (top == 0u) break;
-            ray = stack[--top];
-            walkOrigin = ray.origin;
-            walkDirection = ray.direction;
+            if (top == 0u) {
+                // The sample is done: its colour joins the sum, in sample order.
+                sum += color;
+                color = vec3(0.0);
+                if (++sampleIndex == samples) break;
+                pushRay(top, primaryTask(sampleIndex));
+            }
+            // Pause once past the budget, after at least one ray (so every
+            // dispatch gets on): the stack holds all that is left.
+            if (loopTurns >= budget && tracedOne) break;
+            tracedOne = true;
+            task = popRay(top);
+            walkOrigin = task.origin;
+            walkDirection = task.direction;
         }
 
         Hit hit;
@@ -195,27 +249,35 @@ vec3 radiance(rvec3 origin, rvec3 direction, out Hit primary, out vec3 primaryNo
         walkScene(walkOrigin, walkDirection, walkMax, feeler, hit, through);
 
         if (feeler) {
-            color += ray.weight * lightTerm(object, s, -vec3(ray.direction), k, light, through,
-                                            ray.level == 0u);
+            color += task.weight * lightTerm(object, s, -vec3(task.direction), k, light, through,
+                                             task.level == 0u && sampleIndex == 0u);
             ++light;
             continue;
         }
-        if (ray.level == 0u) primary = hit;
+        bool firstPrimary = task.level == 0u && sampleIndex == 0u;
+        if (firstPrimary) {
+#if VKRAY_DEBUG_PIXEL
+            debugHit = hit;
+            debugDirection = task.direction;
+#endif
+            pixels[firstPixel].color.w = float(hit.t);
+            pixels[firstPixel].normal = vec4(0.0, 0.0, 0.0, intBitsToFloat(hit.object));
+        }
         if (hit.object < 0) {
-            color += ray.weight * frame.background.rgb;
+            color += task.weight * frame.background.rgb;
             continue;
         }
-        s = surfaceAt(hit, ray.origin, ray.direction);
+        s = surfaceAt(hit, task.origin, task.direction);
         k = hitTexture(hit, s);
         object = objects[hit.surface];
-        if (ray.level == 0u) {
-            primaryNormal = s.m;
+        if (firstPrimary) {
+            pixels[firstPixel].normal.xyz = s.m;
 #if VKRAY_DEBUG_PIXEL
             debugTexture = k;
 #endif
         }
         // Emissive and ambient now, each light in the steps that follow.
-        color += ray.weight * (object.emissive.rgb + k * object.ambient.rgb * frame.globalAmbient.rgb);
+        color += task.weight * (object.emissive.rgb + k * object.ambient.rgb * frame.globalAmbient.rgb);
         light = 0u;
 #if VKRAY_SHADOWS
         feelerOrigin = offsetOrigin(s.p, s.geometric, s.m);  // lit lights are on m's side
@@ -223,22 +285,22 @@ vec3 radiance(rvec3 origin, rvec3 direction, out Hit primary, out vec3 primaryNo
         // The secondary rays wait on the stack until the lights are done;
         // refraction goes first, so that reflection is followed first, as in
         // Hill's shade().
-        if (ray.level >= min(frame.sampling.z, MAX_RECURSION_DEPTH)) continue;
+        if (task.level >= min(frame.sampling.z, MAX_RECURSION_DEPTH)) continue;
 #if VKRAY_REFRACTION
         if ((object.shape.z & FOLLOW_REFRACTION) != 0u) {
-            Medium medium = ray.medium;
-            vec3 t = refracted(vec3(ray.direction), s, object.material.z, medium);
-            stack[top++] = RayTask(offsetOrigin(s.p, s.geometric, t), t,
-                                   ray.weight * object.material.y, ray.level + 1u, medium);
+            Medium medium = task.medium;
+            vec3 t = refracted(vec3(task.direction), s, object.material.z, medium);
+            pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, t), t,
+                                 task.weight * object.material.y, task.level + 1u, medium));
         }
 #endif
 #if VKRAY_REFLECTION
         if ((object.shape.z & FOLLOW_REFLECTION) != 0u) {
-            rvec3 r = normalize(ray.direction - 2.0 * dot(ray.direction, rvec3(s.m)) * rvec3(s.m));
-            stack[top++] = RayTask(offsetOrigin(s.p, s.geometric, vec3(r)), r,
-                                   ray.weight * object.material.x, ray.level + 1u, ray.medium);
+            rvec3 r = normalize(task.direction - 2.0 * dot(task.direction, rvec3(s.m)) * rvec3(s.m));
+            pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, vec3(r)), r,
+                                 task.weight * object.material.x, task.level + 1u, task.medium));
         }
 #endif
     }
-    return color;
+    ray = GpuRayProgress(vec4(sum, uintBitsToFloat(sampleIndex)), vec4(color, uintBitsToFloat(top)));
 }

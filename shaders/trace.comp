@@ -30,7 +30,9 @@ layout(local_size_x = WORKGROUP_X, local_size_y = WORKGROUP_Y, local_size_z = 1)
 layout(std140, set = 0, binding = BINDING_FRAME) uniform FrameBlock { FrameParams frame; };
 layout(std430, set = 0, binding = BINDING_OBJECTS) readonly buffer ObjectBlock { GpuObject objects[]; };
 layout(std430, set = 0, binding = BINDING_LIGHTS) readonly buffer LightBlock { GpuLight lights[]; };
-layout(std430, set = 0, binding = BINDING_PIXELS) writeonly buffer PixelBlock { GpuPixel pixels[]; };
+layout(std430, set = 0, binding = BINDING_PIXELS) buffer PixelBlock { GpuPixel pixels[]; };
+layout(std430, set = 0, binding = BINDING_PROGRESS) buffer ProgressBlock { GpuRayProgress progress[]; };
+layout(std430, set = 0, binding = BINDING_STATUS) buffer StatusBlock { GpuDispatchStatus status; };
 layout(push_constant) uniform TileBlock { TileParams tileParams; };
 #if VKRAY_DEBUG_PIXEL
 layout(std430, set = 0, binding = BINDING_DEBUG) writeonly buffer DebugBlock {
@@ -46,6 +48,12 @@ layout(std430, set = 0, binding = BINDING_DOUBLE_OBJECTS) readonly buffer Double
 #endif
 
 const float INFINITY = 1.0 / 0.0;
+
+// The loop turns this invocation has run in this dispatch, counted in the
+// loops whose turns grow with the scene: the scene walk, a mesh's BVH, the
+// torus's root finder, CSG. Its rays pause once it passes the dispatch's
+// budget (TileParams.work.x), well before llvmpipe's loop limit.
+uint loopTurns = 0u;
 
 // The world ray in an object's generic space: M^-1 applied and the direction
 // not renormalised, so the generic t is the world t.
@@ -231,10 +239,13 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
     bool walking = hitsBox(root.lo.xyz, root.hi.xyz, origin, invD, 0.0, hit.t, enter);
     bool leafDone = false;  // the last leaf is tested: the walk goes on from the stack
     while (through > 0.0) {
-        for (uint i = leafFirst; i < leafFirst + leafCount && through > 0.0; ++i)
+        for (uint i = leafFirst; i < leafFirst + leafCount && through > 0.0; ++i) {
+            ++loopTurns;
             testObject(objectIndex[i], origin, direction, feeler, hit, through);
+        }
         leafCount = 0u;
         while (walking || leafDone) {
+            ++loopTurns;
             if (!leafDone) {
                 GpuBvhNode n = objectNodes[node];
                 uint count = floatBitsToUint(n.hi.w), first = floatBitsToUint(n.lo.w);
@@ -261,6 +272,7 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
             leafDone = false;
             walking = false;
             while (top > 0u && !walking) {
+                ++loopTurns;
                 --top;
                 walking = stackEnter[top] <= hit.t;
                 node = stack[top];
@@ -269,27 +281,13 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
         if (leafCount == 0u) break;
     }
 #else
-    for (uint i = 0u; i < frame.image.w && through > 0.0; ++i)
+    for (uint i = 0u; i < frame.image.w && through > 0.0; ++i) {
+        ++loopTurns;
         testObject(i, origin, direction, feeler, hit, through);
+    }
 #endif
     if (!feeler && hit.object < 0) hit.t = INFINITY;
 }
-
-#include "shade.glsl"
-
-#if VKRAY_DEBUG_PIXEL
-// Every object on its own, for `vkray pixel`: its generic ray and nearest t.
-void recordObjectTests(rvec3 origin, rvec3 direction) {
-    for (uint i = 0u; i < frame.image.w; ++i) {
-        rvec3 o, d, n, geometric;
-        toObjectSpace(i, origin, direction, o, d);
-        real t;
-        uint surface;
-        if (!intersectObject(i, origin, direction, INFINITY, t, n, geometric, surface)) t = INFINITY;
-        debugEntries[i] = GpuDebugEntry(vec4(o, t), vec4(d, 0.0));
-    }
-}
-#endif
 
 // The unit direction of the primary ray through image point (x right, y
 // down, in pixels).
@@ -307,78 +305,125 @@ rvec3 primaryDirection(vec2 imagePoint) {
                      screen.y * tanHalfFov * camera.cameraV.xyz);
 }
 
-void main() {
-    // This invocation's pixel: one per pixel, or one per block x block pixels.
-    uint block = frame.image.z;
-    uvec2 rayInTile = gl_GlobalInvocationID.xy;
-    uvec2 tileOrigin = tileParams.tile.xy;
-    uvec2 tileSize = tileParams.tile.zw;
-    uvec2 first = rayInTile * block;  // first pixel of the block, tile-relative
-    if (first.x >= tileSize.x || first.y >= tileSize.y) return;
-    uvec2 pixel = tileOrigin + first;
-#if VKRAY_PRECISION_FP64
-    rvec3 origin = doubleCamera.eye.xyz;
-#else
-    rvec3 origin = frame.eye.xyz;
+// The invocation's pixel (or block) and its sample grid, set by main().
+uvec2 rayPixel;
+#if VKRAY_ANTIALIAS
+uint rayPixelIndex, sampleGridColumns, sampleGridRows;
 #endif
 
-    // Its samples: the centre, or (VKRAY_ANTIALIAS) N jittered in a grid of
-    // cells (sampling.h, shared with the CPU reference); the colour is their
-    // mean, the AOVs are those of sample 0.
-#if VKRAY_ANTIALIAS
-    uint samples = frame.sampling.x;
-    uint pixelIndex = pixel.y * frame.image.x + pixel.x;
+rvec3 rayEye() {
+#if VKRAY_PRECISION_FP64
+    return doubleCamera.eye.xyz;
 #else
-    const uint samples = 1u;
+    return frame.eye.xyz;
 #endif
-    GpuPixel result;
-    vec3 sum = vec3(0.0);
-    rvec3 direction, p;
-    Hit hit;
-    for (uint k = 0u; k < samples; ++k) {
-        vec2 offset = vec2(0.5);
+}
+
+// The primary ray of sample k: through the centre, or (VKRAY_ANTIALIAS) N
+// jittered in a grid of cells (sampling.h, shared with the CPU reference).
+rvec3 sampleDirection(uint k) {
+    vec2 offset = vec2(0.5);
 #if VKRAY_ANTIALIAS
-        if (samples > 1u)
-            offset = vec2(sampleOffsetX(frame.sampling.y, pixelIndex, k, samples),
-                          sampleOffsetY(frame.sampling.y, pixelIndex, k, samples));
+    if (frame.sampling.x > 1u)
+        offset = vec2(gridOffsetX(frame.sampling.y, rayPixelIndex, k, sampleGridColumns),
+                      gridOffsetY(frame.sampling.y, rayPixelIndex, k, sampleGridColumns,
+                                  sampleGridRows));
 #endif
-        rvec3 sampleDirection = primaryDirection(vec2(pixel) + offset * float(block));
-        Hit sampleHit;
-        vec3 m;
-        sum += radiance(origin, sampleDirection, sampleHit, m);
-        if (k == 0u) {
-            direction = sampleDirection;
-            hit = sampleHit;
-            if (hit.object < 0) {
-                p = rvec3(0.0);
-                result.color.w = INFINITY;
-                result.normal = vec4(0.0, 0.0, 0.0, intBitsToFloat(-1));
-            } else {
-                p = origin + hit.t * direction;
-                result.color.w = float(hit.t);
-                result.normal = vec4(m, intBitsToFloat(hit.object));
-            }
-        }
-    }
-    result.color.rgb = sum / float(samples);
+    return primaryDirection(vec2(rayPixel) + offset * float(frame.image.z));
+}
+
 #if VKRAY_DEBUG_PIXEL
-    recordObjectTests(origin, direction);
-    GpuObject object = objects[hit.surface];
-    bool hitSomething = hit.object >= 0;
+Hit debugHit;  // sample 0's primary hit and ray, for the debug record
+rvec3 debugDirection;
+#endif
+
+#include "shade.glsl"
+
+
+#if VKRAY_DEBUG_PIXEL
+// Every object on its own, for `vkray pixel`: its generic ray and nearest t.
+void recordObjectTests(rvec3 origin, rvec3 direction) {
+    for (uint i = 0u; i < frame.image.w; ++i) {
+        rvec3 o, d, n, geometric;
+        toObjectSpace(i, origin, direction, o, d);
+        real t;
+        uint surface;
+        if (!intersectObject(i, origin, direction, INFINITY, t, n, geometric, surface)) t = INFINITY;
+        debugEntries[i] = GpuDebugEntry(vec4(o, t), vec4(d, 0.0));
+    }
+}
+
+// The debug record of the one ray `vkray pixel` traces, whose pixel is `result`.
+void recordDebug(GpuPixel result) {
+    rvec3 origin = rayEye();
+    recordObjectTests(origin, debugDirection);
+    GpuObject object = objects[debugHit.surface];
+    bool hitSomething = debugHit.object >= 0;
+    rvec3 p = hitSomething ? origin + debugHit.t * debugDirection : rvec3(0.0);
     debugHeader.rayOrigin = vec4(origin, 0.0);
-    debugHeader.rayDirection = vec4(direction, 0.0);
-    debugHeader.hitPoint = vec4(p, hit.t);
+    debugHeader.rayDirection = vec4(debugDirection, 0.0);
+    debugHeader.hitPoint = vec4(p, debugHit.t);
     debugHeader.normal = result.normal;
     debugHeader.emissive = vec4(hitSomething ? object.emissive.rgb : vec3(0.0), 0.0);
     debugHeader.ambient = vec4(
         hitSomething ? debugTexture * object.ambient.rgb * frame.globalAmbient.rgb : vec3(0.0), 0.0);
     debugHeader.color = vec4(result.color.rgb, 0.0);
     debugHeader.counts = uvec4(frame.image.w, hitSomething ? frame.counts.x : 0u, 0u, 0u);
+}
 #endif
 
-    // Fill the block (clipped to the tile).
-    uvec2 last = min(first + uvec2(block), tileSize);
-    for (uint y = first.y; y < last.y; ++y)
-        for (uint x = first.x; x < last.x; ++x)
-            pixels[y * tileSize.x + x] = result;
+void main() {
+    // This invocation's pixel: one per pixel, or one per block x block pixels.
+    uint block = frame.image.z;
+    uvec2 rayInTile = gl_GlobalInvocationID.xy;
+    uvec2 tileSize = tileParams.tile.zw;
+    uvec2 first = rayInTile * block;  // first pixel of the block, tile-relative
+    if (first.x >= tileSize.x || first.y >= tileSize.y) return;
+    rayPixel = tileParams.tile.xy + first;
+    uint rayIndex = rayInTile.y * tileParams.work.w + rayInTile.x;
+    uint firstPixel = first.y * tileSize.x + first.x;
+#if VKRAY_ANTIALIAS
+    uint samples = frame.sampling.x;
+    rayPixelIndex = rayPixel.y * frame.image.x + rayPixel.x;
+    sampleGridColumns = sampleColumns(samples);
+    sampleGridRows = sampleRows(samples);
+#else
+    const uint samples = 1u;
+#endif
+#if VKRAY_RAY_STACK
+    rayStackBase = rayIndex * frame.sampling.w;
+#endif
+
+    // Its samples go on from where the last dispatch left them. The colour
+    // is their mean; the AOVs are those of sample 0.
+    GpuRayProgress ray;
+    if (tileParams.work.y != 0u)
+        ray = GpuRayProgress(vec4(0.0), vec4(0.0));  // no sample finished, none pending
+    else
+        ray = progress[rayIndex];
+    if (floatBitsToUint(ray.sum.w) < samples) {
+        traceSamples(ray, samples, firstPixel, tileParams.work.x);
+        progress[rayIndex] = ray;
+        if (floatBitsToUint(ray.sum.w) < samples) {
+            atomicAdd(status.counts.x, 1u);
+        } else {
+            GpuPixel result = pixels[firstPixel];
+            result.color.rgb = ray.sum.rgb / float(samples);
+            // Fill the block (clipped to the tile).
+            uvec2 last = min(first + uvec2(block), tileSize);
+            for (uint y = first.y; y < last.y; ++y)
+                for (uint x = first.x; x < last.x; ++x)
+                    pixels[y * tileSize.x + x] = result;
+#if VKRAY_DEBUG_PIXEL
+            recordDebug(result);
+#endif
+        }
+    }
+
+    // The canary: a loop of work.z turns (a push constant, so that no
+    // compiler can unroll it) runs short only if the driver's loop limit
+    // was reached in this invocation; then the dispatch is not to be trusted.
+    uint canary = 0u;
+    for (uint i = 0u; i < tileParams.work.z; ++i) ++canary;
+    if (canary != tileParams.work.z) atomicAdd(status.counts.y, 1u);
 }

@@ -139,7 +139,9 @@ void reportShader(const gpu::GpuRenderStats& stats, const Options& o, std::ostre
 
 // The progress display's callback; it also stops the render on Ctrl-C.
 RenderProgress progressTo(ProgressDisplay& display) {
-    return [&display](std::size_t done, std::size_t total) {
+    const bool paced = gpu::injectedFault() == gpu::Fault::SlowProgress;
+    return [&display, paced](std::size_t done, std::size_t total) {
+        if (paced) std::this_thread::sleep_for(std::chrono::milliseconds(25));
         display.update(done, total);
         return !stopRequested();
     };
@@ -157,8 +159,14 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
         reportShader(stats, o, out);
         out << "gpu render: " << fixed(stats.renderSeconds, 3) << " s, precision "
             << precisionName(o.precision) << ", " << stats.tiles
-            << (stats.tiles == 1 ? " tile, " : " tiles, ")
+            << (stats.tiles == 1 ? " tile" : " tiles") << " in " << stats.dispatches
+            << (stats.dispatches == 1 ? " dispatch, " : " dispatches, ")
             << fixed(mrays(stats.rays, stats.renderSeconds), 2) << " Mrays/s\n";
+        if (stats.tilesRedone > 0)
+            out << "gpu render: " << stats.tilesRedone
+                << (stats.tilesRedone == 1 ? " tile was" : " tiles were")
+                << " traced again with less work per dispatch: the driver's loop limit cut a "
+                   "dispatch short\n";
         session.requireNoValidationMessages(o);
         return frame;
     }

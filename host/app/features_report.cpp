@@ -38,13 +38,21 @@ std::string arrayBytes(const std::vector<T>& items) {
 }
 
 // What the host uploads for one binding (the same arrays as the tracer's).
-std::string bufferSize(std::uint32_t binding, const gpu::GpuScene& packed, const Scene& scene) {
+std::string bufferSize(std::uint32_t binding, const gpu::GpuScene& packed, const Scene& scene,
+                       bool doubles) {
     using namespace gpu;
     switch (binding) {
     case BINDING_FRAME: return std::to_string(sizeof(FrameParams)) + " bytes";
     case BINDING_OBJECTS: return arrayBytes(packed.objects);
     case BINDING_LIGHTS: return arrayBytes(packed.lights);
     case BINDING_PIXELS: return "one tile of " + std::to_string(sizeof(GpuPixel)) + "-byte pixels";
+    case BINDING_PROGRESS:
+        return "one tile of " + std::to_string(sizeof(GpuRayProgress)) + "-byte ray states";
+    case BINDING_STATUS: return std::to_string(sizeof(GpuDispatchStatus)) + " bytes";
+    case BINDING_RAY_STACK:
+        return "one tile of " + std::to_string(pendingRayEntries(scene)) + "-entry stacks of " +
+               std::to_string(doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask)) +
+               "-byte rays";
     case BINDING_DEBUG:
         return std::to_string(sizeof(GpuDebugHeader) +
                               (scene.objects.size() + scene.lights.size()) * sizeof(GpuDebugEntry)) +
@@ -174,7 +182,7 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
         char line[96];
         std::snprintf(line, sizeof line, "  %2u %-24s %-8s ", b.binding, b.name,
                       b.uniform ? "uniform" : "storage");
-        out << line << bufferSize(b.binding, packed, scene) << "\n";
+        out << line << bufferSize(b.binding, packed, scene, features.doubles) << "\n";
     }
     return out.str();
 }

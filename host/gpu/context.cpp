@@ -140,9 +140,10 @@ Fault injectedFault() {
     if (fault == "device-lost") return Fault::DeviceLost;
     if (fault == "out-of-device-memory") return Fault::OutOfDeviceMemory;
     if (fault == "no-float64") return Fault::NoFloat64;
+    if (fault == "slow-progress") return Fault::SlowProgress;
     throw Error("VKRAY_FAULT='" + fault +
                 "' is not a fault vkray can inject (no-compute, device-lost, "
-                "out-of-device-memory, no-float64); it is a test hook: unset it");
+                "out-of-device-memory, no-float64, slow-progress); it is a test hook: unset it");
 }
 
 void explainVulkanFailure(const vk::SystemError& failure, const DeviceInfo& device) {

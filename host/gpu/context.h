@@ -58,4 +58,14 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+// Test hook (README "Reliability"): VKRAY_FAULT=NAME makes the GPU side
+// fail as a real device can but a test cannot cause: `no-compute` (every
+// device lacks a compute queue), `device-lost` (after the first tile),
+// `out-of-device-memory` (at the first buffer allocation), `no-float64` (no
+// device has shaderFloat64); or `slow-progress`: every progress report of a
+// render waits 25 ms, so that tests of progress lines and interruption do
+// not depend on the machine's speed. Unset: None. An unknown NAME is an Error.
+enum class Fault { None, NoCompute, DeviceLost, OutOfDeviceMemory, NoFloat64, SlowProgress };
+Fault injectedFault();
+
 }  // namespace vkray::gpu

@@ -27,14 +27,6 @@ struct Context::Impl {
     std::uint32_t findMemoryType(std::uint32_t typeBits, vk::MemoryPropertyFlags flags) const;
 };
 
-// Test hook (README "Reliability"): VKRAY_FAULT=NAME makes the GPU side
-// fail as a real device can but a test cannot cause: `no-compute` (every
-// device lacks a compute queue), `device-lost` (after the first tile),
-// `out-of-device-memory` (at the first buffer allocation). Unset: None. An
-// unknown NAME is an Error.
-enum class Fault { None, NoCompute, DeviceLost, OutOfDeviceMemory, NoFloat64 };
-Fault injectedFault();
-
 // Vulkan's failures that can strike in the middle of a render (device lost,
 // out of device or host memory), as an Error saying what happened and what
 // to do; any other Vulkan failure is explained in general terms.

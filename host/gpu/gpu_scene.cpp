@@ -271,7 +271,8 @@ FrameParams packFrame(const Scene& scene, const GpuScene& packed, const CameraBa
                uint(scene.objects.size())};
     f.counts = {uint(scene.lights.size()), uint(packed.objectNodes.size()), packed.unboundedFirst,
                 packed.unboundedCount};
-    f.sampling = {uint(settings.spp), settings.seed, uint(scene.maxRecursionDepth), 0};
+    f.sampling = {uint(settings.spp), settings.seed, uint(scene.maxRecursionDepth),
+                  uint(pendingRayEntries(scene))};
     return f;
 }
 

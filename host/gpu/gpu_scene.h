@@ -38,6 +38,11 @@ GpuScene packScene(const Scene& scene, const ShaderFeatures& features);
 // The camera of FrameParams in double (fp64 variant).
 GpuDoubleCamera packDoubleCamera(const CameraBasis& camera);
 
+// Entries of one ray's pending-ray stack (reflection and refraction
+// variants): taking a ray adds at most two one level deeper, so
+// maxRecursionDepth + 1 hold the deepest tree.
+inline int pendingRayEntries(const Scene& scene) { return scene.maxRecursionDepth + 1; }
+
 FrameParams packFrame(const Scene& scene, const GpuScene& packed, const CameraBasis& camera,
                       const RenderSettings& settings);
 

@@ -61,7 +61,8 @@ BufferNeed need(const char* what, const std::vector<T>& items, const char* advic
 
 // Every buffer TracePass allocates for this variant, before it allocates any.
 std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures& features,
-                                    bool doubles, size_t tilePixels, size_t debugEntries) {
+                                    bool doubles, size_t tilePixels, size_t tileRays,
+                                    size_t pendingRays, size_t debugEntries) {
     const char* fewerObjects = "Use fewer objects";
     const char* smallerMeshes = "Use fewer or smaller meshes";
     std::vector<BufferNeed> needs{
@@ -69,7 +70,12 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
         need("objects", packed.objects, fewerObjects),
         need("lights", packed.lights, "Use fewer lights"),
         {"tile pixels", tilePixels, sizeof(GpuPixel), false, "Use a smaller --block"},
+        {"ray progress", tileRays, sizeof(GpuRayProgress), false, "Use a smaller --block"},
     };
+    if (pendingRays > 0)
+        needs.push_back({"pending rays", pendingRays,
+                         doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask), false,
+                         "Use a smaller maxRecursionDepth"});
     if (features.debugPixel)
         needs.push_back({"debug entries", debugEntries, sizeof(GpuDebugEntry), false, fewerObjects});
     if (features.objectBvh) {
@@ -87,8 +93,15 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     return needs;
 }
 
+// Loop turns one ray may run in one dispatch (counted in trace.comp as
+// loopTurns). llvmpipe ends every loop of an invocation once 65 535 turns
+// have run in it, silently; 8 lanes share that count, and some loops are not
+// counted, hence the margin. The canary catches what the margin misses.
+constexpr uint kTurnBudget = 4096;
+constexpr uint kCanaryTurns = 4;
+
 // Everything one render needs on the device: the scene's buffers, the
-// descriptor set and a command buffer; dispatchTile() traces one tile and
+// descriptor set and a command buffer; traceTile() traces one tile and
 // waits for it.
 class TracePass {
 public:
@@ -99,9 +112,13 @@ public:
         : c_(c), pipeline_(pipeline) {
         const GpuScene packed = packScene(scene, features);
         const size_t debugEntries = 4 + scene.objects.size() + scene.lights.size();
-        checkBufferNeeds(
-            bufferNeeds(packed, features, doubles, size_t(tile) * size_t(tile), debugEntries),
-            deviceLimits(c.info));
+        const size_t raysPerSide = size_t((tile + settings.block - 1) / settings.block);
+        const size_t tileRays = raysPerSide * raysPerSide;
+        const bool rayStack = features.has(Shading::Reflection) || features.has(Shading::Refraction);
+        const size_t pendingRays = rayStack ? tileRays * size_t(pendingRayEntries(scene)) : 0;
+        checkBufferNeeds(bufferNeeds(packed, features, doubles, size_t(tile) * size_t(tile),
+                                     tileRays, pendingRays, debugEntries),
+                         deviceLimits(c.info));
         const std::vector<FrameParams> frameParams{packFrame(scene, packed, camera, settings)};
         using Usage = vk::BufferUsageFlagBits;
         // Only the buffers this variant reads (the same list as its bindings).
@@ -110,6 +127,14 @@ public:
         add(BINDING_LIGHTS, makeBuffer(c, packed.lights, Usage::eStorageBuffer));
         add(BINDING_PIXELS, makeBuffer(c, std::vector<GpuPixel>(size_t(tile) * size_t(tile)),
                                        Usage::eStorageBuffer));
+        add(BINDING_PROGRESS, std::make_unique<HostBuffer>(c, sizeof(GpuRayProgress) * tileRays,
+                                                           Usage::eStorageBuffer));
+        add(BINDING_STATUS, makeBuffer(c, std::vector<GpuDispatchStatus>(1), Usage::eStorageBuffer));
+        if (rayStack)
+            add(BINDING_RAY_STACK,
+                std::make_unique<HostBuffer>(
+                    c, pendingRays * (doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask)),
+                    Usage::eStorageBuffer));
         if (features.debugPixel) {
             // A header and one entry per object and per light, zeroed.
             static_assert(sizeof(GpuDebugHeader) == 4 * sizeof(GpuDebugEntry));
@@ -169,10 +194,42 @@ public:
     }
 
     // Traces the rays of the tile at (tx, ty) of w x h pixels and waits; the
-    // tile's pixels are then in pixels(), row-major with stride w.
-    void dispatchTile(int tx, int ty, int w, int h, int block) {
-        const TileParams tileParams{{uint(tx), uint(ty), uint(w), uint(h)}};
+    // tile's pixels are then in pixels(), row-major with stride w. Each ray
+    // does at most `turnBudget` counted loop turns per dispatch and the tile
+    // is dispatched again until all are done (the image does not depend on
+    // the budget). A dispatch the driver cut short (its canary ran short)
+    // starts the tile over with a quarter of the budget, which later tiles
+    // keep; when a single ray overruns the driver's limit, it is an Error.
+    void traceTile(int tx, int ty, int w, int h, int block, uint& turnBudget,
+                   GpuRenderStats& stats) {
+        for (;;) {
+            GpuDispatchStatus status{};
+            bool first = true;
+            do {
+                status = dispatch(tx, ty, w, h, block, turnBudget, first);
+                ++stats.dispatches;
+                first = false;
+            } while (status.counts.y == 0 && status.counts.x > 0);
+            if (status.counts.y == 0) return;
+            ++stats.tilesRedone;
+            if (turnBudget == 1)
+                throw Error("the GPU cannot trace one ray of the tile at (" + std::to_string(tx) +
+                            ", " + std::to_string(ty) + ") within the driver's loop limit (" +
+                            c_.info.name + " ends every loop of an invocation after a fixed "
+                            "number of turns; llvmpipe's is 65 535), so the result would be "
+                            "wrong. Render with --cpu, or make the scene simpler for one ray "
+                            "(fewer lights, objects or triangles along it)");
+            turnBudget = std::max<uint>(1, turnBudget / 4);
+        }
+    }
+
+    // One dispatch over the tile; `first`: its rays start afresh.
+    GpuDispatchStatus dispatch(int tx, int ty, int w, int h, int block, uint turnBudget, bool first) {
         const uint raysX = uint((w + block - 1) / block), raysY = uint((h + block - 1) / block);
+        const TileParams tileParams{{uint(tx), uint(ty), uint(w), uint(h)},
+                                    {turnBudget, first ? 1u : 0u, kCanaryTurns, raysX}};
+        const GpuDispatchStatus zero{};
+        buffer(BINDING_STATUS).upload(&zero, sizeof zero);
         commands_.reset();
         commands_.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
         commands_.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.pipeline);
@@ -194,7 +251,9 @@ public:
             throw vk::DeviceLostError("vkWaitForFences (injected by VKRAY_FAULT)");
         c_.device.resetFences(*fence_);
         buffer(BINDING_PIXELS).invalidate();
+        buffer(BINDING_STATUS).invalidate();
         if (buffers_.count(BINDING_DEBUG)) buffer(BINDING_DEBUG).invalidate();
+        return *static_cast<const GpuDispatchStatus*>(buffer(BINDING_STATUS).data());
     }
 
     const GpuPixel* pixels() const {
@@ -315,7 +374,14 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
     const int block = settings.block;
     const int side = std::max(std::min(16, options_.tileSize),
                               options_.tileSize / int(std::ceil(std::sqrt(double(settings.spp)))));
-    const int tile = fitTileSide(std::max(block, side / block * block), block, sizeof(GpuPixel),
+    // Per pixel at most (a ray per pixel): its pixel, progress and pending rays.
+    const bool rayStack = features.has(Shading::Reflection) || features.has(Shading::Refraction);
+    const size_t pixelBytes =
+        sizeof(GpuPixel) + sizeof(GpuRayProgress) +
+        (rayStack ? size_t(pendingRayEntries(scene)) *
+                        (features.doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask))
+                  : 0);
+    const int tile = fitTileSide(std::max(block, side / block * block), block, pixelBytes,
                                  pipeline.workgroupX, pipeline.workgroupY,
                                  deviceLimits(context_.device()));
     TracePass pass(context_.impl(), pipeline, features, features.doubles, scene,
@@ -326,10 +392,13 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
     const auto renderStart = Clock::now();
     const double renderCpuStart = processCpuSeconds();
     st.tiles = 0;
+    st.dispatches = 0;
+    st.tilesRedone = 0;
     st.rays = 0;
     const size_t totalRays = size_t((settings.width + block - 1) / block) *
                              size_t((settings.height + block - 1) / block) * size_t(settings.spp);
     if (progress && !progress(0, totalRays)) throw Interrupted();
+    uint turnBudget = options_.turnBudget > 0 ? uint(options_.turnBudget) : kTurnBudget;
     AllTilesInRows everyTile(options_.serpentineTiles);
     TileSchedule& tiles = schedule ? *schedule : everyTile;
     tiles.plan(settings.width, settings.height, tile);
@@ -339,7 +408,7 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
         for (const TileRect& piece : tilesOf(given->width, given->height, tile)) {
             const int tx = given->x + piece.x, ty = given->y + piece.y;
             const int w = piece.width, h = piece.height;
-            pass.dispatchTile(tx, ty, w, h, block);
+            pass.traceTile(tx, ty, w, h, block, turnBudget, st);
             const GpuPixel* pixels = pass.pixels();
             for (int y = 0; y < h; ++y) {
                 for (int x = 0; x < w; ++x) {
@@ -389,7 +458,8 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
                    camera, oneSample, 1);
     // A one-pixel tile at the corner of the pixel's block: its one ray is the block's.
     const int block = std::max(settings.block, 1);
-    pass.dispatchTile(x - x % block, y - y % block, 1, 1, block);
+    uint turnBudget = kTurnBudget;
+    pass.traceTile(x - x % block, y - y % block, 1, 1, block, turnBudget, st);
 
     const GpuDebugHeader& header = pass.debugHeader();
     const GpuDebugEntry* entries = pass.debugEntries();

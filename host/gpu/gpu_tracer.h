@@ -33,6 +33,10 @@ struct GpuRenderOptions {
     // Other shapes are for benchmarks (vkray_bench --workgroup).
     int workgroupX = 0, workgroupY = 0;
     bool serpentineTiles = false;  // tile rows alternately right to left (else all left to right)
+    // Counted loop turns one ray may run in one dispatch before it pauses
+    // (0: the renderer's own bound, well below llvmpipe's loop limit). The
+    // image is the same whatever the bound; tests set it low to prove that.
+    int turnBudget = 0;
 };
 
 struct GpuRenderStats {
@@ -42,6 +46,8 @@ struct GpuRenderStats {
     CompiledShader shader;     // SPIR-V, key, cache hit, compile/load time
     std::string variant;       // describe(features), e.g. "sphere+cube"
     std::size_t tiles = 0;
+    std::size_t dispatches = 0;   // a tile takes several when its rays pause (turnBudget)
+    std::size_t tilesRedone = 0;  // started over: the driver's loop limit cut a dispatch short
     std::size_t rays = 0;      // primary rays traced
 };
 

@@ -117,7 +117,11 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
     std::vector<ShaderBinding> bindings{{BINDING_FRAME, "frame", true},
                                         {BINDING_OBJECTS, "objects", false},
                                         {BINDING_LIGHTS, "lights", false},
-                                        {BINDING_PIXELS, "pixels", false}};
+                                        {BINDING_PIXELS, "pixels", false},
+                                        {BINDING_PROGRESS, "ray progress", false},
+                                        {BINDING_STATUS, "dispatch status", false}};
+    if (features.has(Shading::Reflection) || features.has(Shading::Refraction))
+        bindings.push_back({BINDING_RAY_STACK, "pending rays", false});
     if (features.debugPixel) bindings.push_back({BINDING_DEBUG, "debug record", false});
     if (features.objectBvh) {
         bindings.push_back({BINDING_OBJECT_NODES, "object BVH nodes", false});

@@ -100,7 +100,7 @@ struct Pixmap {
 
 // maxRecursionDepth is refused above this by the reader: the GPU follows
 // reflected and refracted rays with an explicit stack sized from it.
-inline constexpr int kMaxRecursionDepth = 8;
+inline constexpr int kMaxRecursionDepth = 64;
 
 struct Scene {
     std::string path;  // the file it was read from ("" for text)

@@ -98,6 +98,7 @@ SpanList combine(uint op, SpanList a, SpanList b) {
     uint endsA = 2u * a.count, endsB = 2u * b.count;
     SpanEnd start;
     while (i < endsA || j < endsB) {
+        ++loopTurns;
         bool fromA = j >= endsB || (i < endsA && a.ends[i].t <= b.ends[j].t);
         SpanEnd end = fromA ? a.ends[i++] : b.ends[j++];
         if (fromA) inA = !inA;
@@ -127,6 +128,7 @@ bool intersectCsg(uint first, rvec3 origin, rvec3 direction, real tMin, real tMa
     uint top = 0u;
     uint nodeCount = csgNodes[first].node.z;
     for (uint i = first; i < first + nodeCount; ++i) {
+        ++loopTurns;
         uvec4 node = csgNodes[i].node;
         if (node.x == CSG_LEAF) {
             stack[top++] = primitiveSpans(node.y, origin, direction);

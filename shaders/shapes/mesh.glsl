@@ -63,6 +63,7 @@ bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real 
     GpuBvhNode root = meshNodes[mesh.range.x];
     bool walking = hitsBox(root.lo.xyz, root.hi.xyz, o, invD, tMin, t, enter);
     while (walking) {
+        ++loopTurns;
         GpuBvhNode n = meshNodes[mesh.range.x + node];
         uint count = floatBitsToUint(n.hi.w), first = floatBitsToUint(n.lo.w);
         if (count == 0u) {
@@ -81,6 +82,7 @@ bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real 
             }
         } else {
             for (uint i = first; i < first + count; ++i) {
+                ++loopTurns;
                 GpuTriangle tri = triangles[mesh.range.y + i];
                 real tHit;
                 rvec3 bary;
@@ -94,6 +96,7 @@ bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real 
         }
         walking = false;
         while (top > 0u && !walking) {
+            ++loopTurns;
             --top;
             walking = stackEnter[top] <= t;
             node = stack[top];
@@ -115,6 +118,7 @@ bool meshSpan(uint index, rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real 
     t0 = INF;
     t1 = -INF;
     while (true) {
+        ++loopTurns;
         GpuBvhNode n = meshNodes[mesh.range.x + node];
         real enter;
         if (hitsBox(n.lo.xyz, n.hi.xyz, o, invD, -INF, INF, enter)) {
@@ -125,6 +129,7 @@ bool meshSpan(uint index, rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real 
                 continue;
             }
             for (uint i = first; i < first + count; ++i) {
+                ++loopTurns;
                 GpuTriangle tri = triangles[mesh.range.y + i];
                 real t;
                 rvec3 bary;

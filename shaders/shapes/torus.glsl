@@ -22,6 +22,7 @@ real bracketedRoot(real c[5], int degree, real a, real b) {
     real fa = polynomialAt(c, degree, a);
     real x = 0.5 * (a + b);
     for (int i = 0; i < 40; ++i) {
+        ++loopTurns;
         real f = c[degree], df = 0.0;
         for (int k = degree - 1; k >= 0; --k) {
             df = df * x + f;

@@ -60,6 +60,8 @@ TEST_F(Features, DefaultSceneReport) {
         "1 objects storage 800 bytes (5 x 160)",
         "2 lights storage 96 bytes (3 x 32)",
         "3 pixels storage one tile of 32-byte pixels",
+        "15 ray progress storage one tile of 32-byte ray states",
+        "16 dispatch status storage 16 bytes",
     };
     EXPECT_EQ(buffers(run.output), expected) << run.output;
 }
@@ -79,7 +81,8 @@ TEST_F(Features, MeshSceneBindsMeshAndBvhBuffers) {
     std::vector<std::string> bound;
     for (const std::string& line : lines) bound.push_back(line.substr(0, line.find(" storage")));
     const std::vector<std::string> expected{"0 frame uniform 144 bytes", "1 objects", "2 lights",
-                                            "3 pixels", "5 object BVH nodes", "6 object BVH index",
+                                            "3 pixels", "15 ray progress", "16 dispatch status",
+                                            "5 object BVH nodes", "6 object BVH index",
                                             "7 meshes", "8 mesh BVH nodes", "9 triangles"};
     EXPECT_EQ(bound, expected) << run.output;
     // 10 balls + mesh + extrusion in the BVH's index, then the plane.
@@ -99,12 +102,14 @@ TEST_F(Features, VariantAllCompilesEveryFeatureAndBindsTheirBuffers) {
               "VKRAY_PIXMAPS=1 VKRAY_ANTIALIAS=1 EXTRA=2");
     // The scene's own needs are still reported as the scene's.
     EXPECT_EQ(field(run.output, "reflection").substr(0, 3), "no ") << run.output;
-    // The mesh, CSG and pixmap arrays are bound (empty: one element, as Vulkan wants).
+    // The pending rays (maxRecursionDepth 3 + 1 entries), the mesh, CSG and
+    // pixmap arrays are bound (empty: one element, as Vulkan wants).
     const std::vector<std::string> lines = buffers(run.output);
-    ASSERT_EQ(lines.size(), 10u) << run.output;
-    EXPECT_EQ(lines[6], "9 triangles storage empty (one 96-byte element: Vulkan has no empty buffers)");
-    EXPECT_EQ(lines[7], "10 CSG nodes storage empty (one 16-byte element: Vulkan has no empty buffers)");
-    EXPECT_EQ(lines[9], "12 texels storage empty (one 4-byte element: Vulkan has no empty buffers)");
+    ASSERT_EQ(lines.size(), 13u) << run.output;
+    EXPECT_EQ(lines[6], "17 pending rays storage one tile of 4-entry stacks of 64-byte rays");
+    EXPECT_EQ(lines[9], "9 triangles storage empty (one 96-byte element: Vulkan has no empty buffers)");
+    EXPECT_EQ(lines[10], "10 CSG nodes storage empty (one 16-byte element: Vulkan has no empty buffers)");
+    EXPECT_EQ(lines[12], "12 texels storage empty (one 4-byte element: Vulkan has no empty buffers)");
 }
 
 TEST_F(Features, SecondaryRaysFollowLightsThresholdsAndDepth) {

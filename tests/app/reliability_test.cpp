@@ -96,15 +96,16 @@ TEST_F(Reliability, TrianglesBeyondTheStorageBufferLimitNameTheTriangles) {
 }
 
 TEST_F(Reliability, SmallBufferLimitShrinksTheTilesInstead) {
-    // 8 KiB holds a 16x16 tile of 32-byte pixels: more dispatches, same image.
+    // 8 KiB holds an 11x11 tile of 64 bytes a pixel (its 32-byte pixel and
+    // a ray's 32-byte progress): more dispatches, same image.
     const std::string s = scene("s.sdl", kGoodScene);
     RunResult big = vkray("render " + s + " -o " + path("a.png") + " --size 40x30");
     RunResult small = vkray("render " + s + " -o " + path("b.png") + " --size 40x30",
                             "VKRAY_MAX_BUFFER_BYTES=8192");
     ASSERT_EQ(big.status, 0) << big.output;
     ASSERT_EQ(small.status, 0) << small.output;
-    EXPECT_NE(big.output.find(", 1 tile,"), std::string::npos) << big.output;
-    EXPECT_NE(small.output.find(", 6 tiles,"), std::string::npos) << small.output;
+    EXPECT_NE(big.output.find(", 1 tile in 1 dispatch,"), std::string::npos) << big.output;
+    EXPECT_NE(small.output.find(", 12 tiles in 12 dispatches,"), std::string::npos) << small.output;
     EXPECT_EQ(readBytes(dir / "a.png"), readBytes(dir / "b.png"));
 }
 
@@ -113,7 +114,7 @@ TEST_F(Reliability, MemoryBeyondTheDeviceHeapIsRefusedBeforeAllocating) {
                           "VKRAY_DEVICE_MEMORY_BYTES=1000000");
     EXPECT_EQ(run.status, 1) << run.output;
     EXPECT_TRUE(std::regex_search(
-        run.output, std::regex(R"(the scene needs about \d+ bytes \(\d\.\d MiB\) of device memory \(tile pixels 2097152 bytes \(2\.0 MiB\), )")))
+        run.output, std::regex(R"(the scene needs about \d+ bytes \(\d\.\d MiB\) of device memory \((ray progress|tile pixels) 2097152 bytes \(2\.0 MiB\), (ray progress|tile pixels) 2097152 bytes \(2\.0 MiB\), )")))
         << run.output;
     EXPECT_NE(run.output.find("memory heap holds 1000000 bytes. Use fewer objects or smaller "
                               "meshes, or render with --cpu"),
@@ -264,9 +265,11 @@ void expectCleanInterruption(const fs::path& dir, const std::string& extra, int 
     const fs::path scene = dir / "teapots.sdl";
     std::ofstream(scene) << teapots();
     std::ofstream(dir / "out.png") << "the previous image";
+    // Paced (25 ms a progress report), so that it is still under way when
+    // stopped however fast the machine.
     BackgroundVkray render("render " + scene.string() + " -o " + (dir / "out.png").string() +
                                " --aov " + (dir / "out").string() + " --size 3000x3000 " + extra,
-                           dir / "log.txt");
+                           dir / "log.txt", {"VKRAY_FAULT=slow-progress"});
     ASSERT_TRUE(render.started());
     // The first progress line comes a second into the render.
     ASSERT_TRUE(render.waitFor(progressLabel + ": ")) << render.output();
@@ -289,9 +292,11 @@ TEST_F(Reliability, SigtermStopsACpuRenderBetweenRows) {
 TEST_F(Reliability, ProgressLinesWhenStderrIsNotATerminal) {
     const fs::path scene = dir / "teapots.sdl";
     std::ofstream(scene) << teapots();
+    // Paced: 144 tiles of at least 25 ms each, so at least two lines (one
+    // a second at most) however fast the machine.
     BackgroundVkray render("render " + scene.string() + " -o " + path("out.png") +
                                " --size 3000x3000",
-                           dir / "log.txt");
+                           dir / "log.txt", {"VKRAY_FAULT=slow-progress"});
     ASSERT_TRUE(render.waitFor("gpu render: ", 2)) << render.output();
     render.stop(SIGINT);
     // gpu render: 10% (900000 of 9000000 rays), 1.23 Mrays/s, 1 min 05 s left

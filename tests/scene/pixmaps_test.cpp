@@ -161,10 +161,10 @@ TEST(TextureWord, CellSizeAndRingWidthMustBePositive) {
 }
 
 TEST(MaxRecursionDepth, IsBoundedByTheGpuStack) {
-    EXPECT_EQ(parseSdl("maxRecursionDepth 8", "t.sdl", {}).maxRecursionDepth, kMaxRecursionDepth);
-    EXPECT_EQ(errorOf([] { parseSdl("light 1 2 3 1 1 1\nmaxRecursionDepth 9", "t.sdl", {}); }),
-              "t.sdl:2:19: error: 'maxRecursionDepth' needs a whole number from 0 to 8, found "
-              "'9' (the GPU follows reflections and refractions with a stack of that depth)");
+    EXPECT_EQ(parseSdl("maxRecursionDepth 64", "t.sdl", {}).maxRecursionDepth, kMaxRecursionDepth);
+    EXPECT_EQ(errorOf([] { parseSdl("light 1 2 3 1 1 1\nmaxRecursionDepth 65", "t.sdl", {}); }),
+              "t.sdl:2:19: error: 'maxRecursionDepth' needs a whole number from 0 to 64, found "
+              "'65' (the GPU follows reflections and refractions with a stack of that depth)");
 }
 
 }  // namespace
