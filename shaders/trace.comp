@@ -177,6 +177,14 @@ const real TIE_TOLERANCE = 1e-9;
 const real TIE_TOLERANCE = 1e-6;
 #endif
 
+// How far a walk still looks for hits: up to the closest so far, and for a
+// ray (not a feeler) the tie tolerance beyond it, as testObject accepts; so
+// a box whose object would tie is not culled, and which object wins a tie
+// does not depend on the order the BVH visits them.
+real reach(real t, bool feeler) {
+    return feeler ? t : t * (1.0 + TIE_TOLERANCE);
+}
+
 // Tests object `index` for a scene walk (walkScene): a closer hit replaces
 // `hit`; for a shadow feeler (VKRAY_SHADOWS), any hit before hit.t passes the
 // surface's transparency into `through`.
@@ -185,7 +193,7 @@ void testObject(uint index, rvec3 origin, rvec3 direction, bool feeler, inout Hi
     real t;
     rvec3 n, geometric;
     uint surface;
-    real tMax = feeler ? hit.t : hit.t * (1.0 + TIE_TOLERANCE);
+    real tMax = reach(hit.t, feeler);
     if (!intersectObject(index, origin, direction, tMax, t, n, geometric, surface)) return;
 #if VKRAY_SHADOWS
     if (feeler) {
@@ -258,7 +266,8 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
                 uint nearIndex, farIndex;
                 real farEnter;
                 int hits = orderChildren(objectNodes[node + 1u], node + 1u, objectNodes[first], first,
-                                         origin, invD, 0.0, hit.t, nearIndex, farIndex, farEnter);
+                                         origin, invD, 0.0, reach(hit.t, feeler), nearIndex,
+                                         farIndex, farEnter);
                 if (hits == 2) {
                     stack[top] = farIndex;
                     stackEnter[top++] = farEnter;
@@ -274,7 +283,7 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
             while (top > 0u && !walking) {
                 ++loopTurns;
                 --top;
-                walking = stackEnter[top] <= hit.t;
+                walking = stackEnter[top] <= reach(hit.t, feeler);
                 node = stack[top];
             }
         }

@@ -151,7 +151,7 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     if (scene.objects.empty()) shadows = "no (no objects)";
     else if (scene.lights.empty()) shadows = "no (no lights)";
     else if (!needed.has(gpu::Shading::Shadows))
-        shadows = "no (one convex object: no feeler can meet another surface)";
+        shadows = "no (one plane or square: no feeler can meet it again)";
     else shadows = "yes (" + count(scene.lights.size(), "light") + ", " +
                    count(scene.objects.size(), "object") + ")";
     out << "shadows: " << shadows << "\n";

@@ -44,19 +44,16 @@ void addObject(const Scene& scene, const SceneObject& object, ShaderFeatures& fe
     for (const SceneObject& operand : object.operands) addObject(scene, operand, features);
 }
 
-// Whether a feeler from some lit point can meet an object: with two objects
-// or more, or one that is not convex (a point of a sphere, cube, plane or
-// square facing a light sees it past its own surface).
+// Whether a feeler from some lit point can meet an object: always, but for
+// a lone plane or square, which a feeler leaving it never meets again. A
+// lone sphere or cube can shadow itself: seen from inside (the eye inside,
+// or a refracted ray), a point of its inner surface facing a light outside
+// sees the light through the rest of the surface.
 bool canShadow(const Scene& scene) {
     if (scene.lights.empty() || scene.objects.empty()) return false;
     if (scene.objects.size() > 1) return true;
-    switch (scene.objects[0].type) {
-    case ShapeType::Sphere:
-    case ShapeType::Plane:
-    case ShapeType::Square:
-    case ShapeType::Cube: return false;
-    default: return true;
-    }
+    const ShapeType type = scene.objects[0].type;
+    return type != ShapeType::Plane && type != ShapeType::Square;
 }
 
 }  // namespace

@@ -130,12 +130,12 @@ TEST_F(Features, SecondaryRaysFollowLightsThresholdsAndDepth) {
     EXPECT_EQ(field(low.output, "refraction").substr(0, 4), "yes ") << low.output;
     EXPECT_EQ(field(low.output, "shadows"), "no (no lights)");
     RunResult flat = vkray("features " + scene("f.sdl", "maxRecursionDepth 0 light 1 2 3 1 1 1\n"
-                                                         "reflectivity 0.9 sphere\n"));
+                                                         "reflectivity 0.9 plane\n"));
     EXPECT_EQ(field(flat.output, "reflection"),
               "no (1 object with reflectivity > minReflectivity 0.5, but maxRecursionDepth 0)")
         << flat.output;
     EXPECT_EQ(field(flat.output, "shadows"),
-              "no (one convex object: no feeler can meet another surface)");
+              "no (one plane or square: no feeler can meet it again)");
     EXPECT_EQ(field(flat.output, "maxRecursionDepth"), "0");
     // --spp adds antialiasing; textures are listed by kind.
     RunResult textured = vkray("features " + scene("t.sdl", "texture 1 sphere texture 2 cube\n") +

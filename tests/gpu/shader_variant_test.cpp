@@ -34,9 +34,13 @@ TEST(ShaderVariant, AScenesOwnShadingOnly) {
 
 TEST(ShaderVariant, ShadowsWhereAFeelerCanMeetAnObject) {
     EXPECT_TRUE(featuresOfText("light 1 2 3 1 1 1 sphere cube").has(Shading::Shadows));
-    // No light, or one convex object: no feeler can meet anything.
+    // No light, or a lone plane or square: no feeler can meet anything.
     EXPECT_FALSE(featuresOfText("sphere cube").has(Shading::Shadows));
-    EXPECT_FALSE(featuresOfText("light 1 2 3 1 1 1 sphere").has(Shading::Shadows));
+    EXPECT_FALSE(featuresOfText("light 1 2 3 1 1 1 plane").has(Shading::Shadows));
+    EXPECT_FALSE(featuresOfText("light 1 2 3 1 1 1 square").has(Shading::Shadows));
+    // A lone sphere or cube seen from inside shadows itself.
+    EXPECT_TRUE(featuresOfText("light 1 2 3 1 1 1 sphere").has(Shading::Shadows));
+    EXPECT_TRUE(featuresOfText("light 1 2 3 1 1 1 cube").has(Shading::Shadows));
     EXPECT_TRUE(featuresOfText("light 1 2 3 1 1 1 torus").has(Shading::Shadows));
     EXPECT_TRUE(hasDefine(featuresOfText("light 1 2 3 1 1 1 sphere cube"), "VKRAY_SHADOWS"));
 }

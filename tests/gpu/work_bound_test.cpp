@@ -10,6 +10,7 @@
 #include "reference/reference_tracer.h"
 #include "scene/error.h"
 #include "support/error_of.h"
+#include "support/frame_difference.h"
 
 #include <gtest/gtest.h>
 
@@ -61,22 +62,6 @@ bool sameBytes(const Frame& a, const Frame& b) {
            same(a.id, b.id);
 }
 
-// The largest colour difference over the pixels, and how many object ids differ.
-struct Difference {
-    double maxColor = 0;
-    size_t ids = 0;
-};
-
-Difference differenceOf(const Frame& gpu, const Frame& cpu) {
-    Difference d;
-    for (size_t i = 0; i < gpu.pixelCount(); ++i) {
-        if (gpu.id[i] != cpu.id[i]) ++d.ids;
-        for (int c = 0; c < 3; ++c)
-            d.maxColor = std::max(d.maxColor, double(std::abs(gpu.color[i][c] - cpu.color[i][c])));
-    }
-    return d;
-}
-
 bool onLlvmpipe() {
     return test::gpuContext().device().name.find("llvmpipe") != std::string::npos;
 }
@@ -93,7 +78,7 @@ TEST(WorkBound, FourThousandSamplesAgreeWithTheReference) {
     const Rendered gpu = renderWithBudget(scene, settings, 0);
     const Frame cpu = reference::render(
         scene, makeCameraBasis(*scene.camera, settings.width, settings.height), settings);
-    const Difference d = differenceOf(gpu.frame, cpu);
+    const test::FrameDifference d = test::frameDifference(gpu.frame, cpu);
     EXPECT_EQ(d.ids, 0u);
     EXPECT_LE(d.maxColor, 2e-3);
     EXPECT_GT(gpu.stats.dispatches, gpu.stats.tiles);  // the rays did pause
@@ -118,16 +103,9 @@ TEST(WorkBound, ReflectiveTransparentToriAgreeWithTheReference) {
     const Rendered gpu = renderWithBudget(scene, settings, 0);
     const Frame cpu = reference::render(
         scene, makeCameraBasis(*scene.camera, settings.width, settings.height), settings);
-    size_t ids = 0, over = 0;
-    for (size_t i = 0; i < cpu.pixelCount(); ++i) {
-        ids += gpu.frame.id[i] != cpu.id[i];
-        double error = 0;
-        for (int c = 0; c < 3; ++c)
-            error = std::max(error, double(std::abs(gpu.frame.color[i][c] - cpu.color[i][c])));
-        over += error > 0.02;
-    }
-    EXPECT_EQ(ids, 0u);
-    EXPECT_LE(double(over), 0.001 * double(cpu.pixelCount()));
+    const test::FrameDifference d = test::frameDifference(gpu.frame, cpu, 0.02);
+    EXPECT_EQ(d.ids, 0u);
+    EXPECT_LE(double(d.over), 0.001 * double(cpu.pixelCount()));
 }
 
 TEST(WorkBound, TheImageDoesNotDependOnTheBudget) {
@@ -189,7 +167,7 @@ TEST(WorkBound, SixtyFourBouncesAgreeWithTheReference) {
     const Rendered gpu = renderWithBudget(scene, settings, 0);
     const Frame cpu = reference::render(
         scene, makeCameraBasis(*scene.camera, settings.width, settings.height), settings);
-    const Difference d = differenceOf(gpu.frame, cpu);
+    const test::FrameDifference d = test::frameDifference(gpu.frame, cpu);
     EXPECT_EQ(d.ids, 0u);
     // 64 bounces of float against double: each bounce's hit point and
     // reflected direction carry float rounding, which the mirrors' 0.9^n
@@ -197,7 +175,7 @@ TEST(WorkBound, SixtyFourBouncesAgreeWithTheReference) {
     EXPECT_LE(d.maxColor, 0.05);
     // The bounces past the eighth are seen: depth 8 draws another image.
     const Rendered shallow = renderWithBudget(sceneOf(facingMirrors(8)), settings, 0);
-    EXPECT_GT(differenceOf(shallow.frame, gpu.frame).maxColor, 1e-3);
+    EXPECT_GT(test::frameDifference(shallow.frame, gpu.frame).maxColor, 1e-3);
     // Beyond the deepest the GPU's stack holds, the reader refuses it.
     EXPECT_NE(errorOf([] { sceneOf(facingMirrors(65)); }).find("from 0 to 64"), std::string::npos);
 }
