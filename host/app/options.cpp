@@ -198,8 +198,8 @@ render options:
   --cpu                 render with the CPU reference instead of the GPU
   --check               render with both and compare (exit 2 beyond tolerance)
   --diff FILE           with --check: write a diff image
-  --fail T              per-pixel error threshold (idiff --fail)
-  --failpercent P       percent of pixels allowed over T (idiff --failpercent)
+  --fail T              with --check: per-pixel error threshold (idiff --fail)
+  --failpercent P       with --check: percent of pixels allowed over T (idiff --failpercent)
   --lenient             skip unknown words and unsupported shapes, with warnings
   --eye X,Y,Z --look X,Y,Z --up X,Y,Z --fov DEG   override the scene's camera
   --threads N           CPU reference threads (default: all cores)
@@ -219,7 +219,7 @@ existing files stay as they were, exit status 130.
 stress and report options:
   --out DIR             where the CSV, JSON and HTML go (default stress-report, report-SCENE)
   --cases PATTERN       stress: only the cases whose name contains PATTERN
-  --cases-dir DIR       stress: the cases' folder (default scenes/stress)
+  --cases-dir DIR       stress: the cases' folder (default scenes/stress next to the binary)
 
 exit status: 0 success, 1 error, 2 images differ beyond tolerance, 130 interrupted
 )";
@@ -287,6 +287,8 @@ Options parseOptions(const std::vector<std::string>& args) {
         o.scenePath = positional[0];
         if (o.cpu && o.check) throw Error("--cpu and --check: --check already renders with both");
         if (!o.diffPath.empty() && !o.check) throw Error("--diff needs --check (or use `vkray compare`)");
+        if (o.failThreshold && !o.check) throw Error("--fail needs --check (or use `vkray compare`)");
+        if (o.failPercent && !o.check) throw Error("--failpercent needs --check (or use `vkray compare`)");
         if (o.cpu && o.validation) throw Error("--validation applies to the GPU; drop --cpu");
         if (o.cpu && (!o.defines.empty() || !o.dumpSpirvDirectory.empty()))
             throw Error("-D and --dump-spirv apply to the GPU shader; drop --cpu");

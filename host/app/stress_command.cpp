@@ -19,15 +19,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// scenes/stress in the current folder (a checkout), else beside the folder
-// of the binary (build/vkray -> scenes/stress).
+// scenes/stress next to the binary (where the build copies it, as it copies
+// shaders/), unless given; the current folder does not matter.
 std::string casesDirectory(const Options& o) {
     if (!o.casesDirectory.empty()) return o.casesDirectory;
-    if (fs::is_directory("scenes/stress")) return "scenes/stress";
     std::error_code ec;
-    const fs::path beside = fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path() / "scenes/stress";
-    if (!ec && fs::is_directory(beside)) return beside.string();
-    throw Error("stress: cannot find scenes/stress here or beside the binary; pass --cases-dir DIR");
+    const fs::path beside = fs::read_symlink("/proc/self/exe", ec).parent_path() / "scenes" / "stress";
+    if (ec || !fs::is_directory(beside))
+        throw Error("stress: cannot find the stress cases next to the binary (" + beside.string() +
+                    "); pass --cases-dir DIR (the project's scenes/stress folder)");
+    return beside.string();
 }
 
 std::string deviceText(const gpu::Context& context) {
@@ -88,22 +89,34 @@ int runStress(const Options& o, std::ostream& out, std::ostream& err) {
     const numerics::Report report = numerics::stressReport(rows, cases, commandLine(o, "stress"), device);
     out << numerics::formatTable(report.table);
     numerics::writeReportFiles(report, outDirectory, "stress", out);
-    // Robust and double must pass every case; naive must fail those built to break it.
-    int failures = 0, checked = 0;
+    // Robust and double must pass every case; naive must fail those built to
+    // break it. A row whose mode did not run is never as expected.
+    int failures = 0, expected = 0, notRun = 0;
     for (const numerics::ModeMetrics& m : rows) {
-        if (!m.ran) continue;
+        if (!m.ran) {
+            ++notRun;
+            continue;
+        }
         const auto c = std::find_if(cases.begin(), cases.end(),
                                     [&](const numerics::StressCase& sc) { return sc.name == m.caseName; });
         const bool expectPass = m.mode != "naive" || !c->naiveFails;
-        ++checked;
-        if (numerics::withinBounds(m) == expectPass) continue;
+        if (numerics::withinBounds(m) == expectPass) {
+            ++expected;
+            continue;
+        }
         ++failures;
         out << "unexpected: " << m.caseName << " " << m.mode
             << (expectPass ? " is beyond its bounds\n" : " passes a case built to break it\n");
     }
-    out << "result: " << checked - failures << " of " << checked << " rows as expected"
-        << (failures ? " (FAIL)\n" : " (PASS)\n");
-    return failures ? 2 : 0;
+    for (const std::string& line : numerics::notRunSummary(rows, cases.size()))
+        out << line << "\n";
+    if (notRun > 0)
+        out << "  a mode that did not run is not a pass: run on a device that has what it needs "
+               "(`vkray devices`), or ask for the other modes with --precision MODE\n";
+    out << "result: " << expected << " of " << rows.size() << " rows as expected"
+        << (notRun ? " (" + std::to_string(notRun) + " not run)" : std::string())
+        << (failures || notRun ? " (FAIL)\n" : " (PASS)\n");
+    return failures || notRun ? 2 : 0;
 }
 
 int runReport(const Options& o, std::ostream& out, std::ostream& err) {

@@ -4,6 +4,34 @@
 
 namespace vkray::numerics {
 
+std::vector<std::string> notRunSummary(const std::vector<ModeMetrics>& rows, std::size_t caseCount) {
+    // Each mode that did not run, with its reasons, in the rows' order.
+    std::vector<std::pair<std::string, std::vector<std::string>>> modes;
+    std::vector<std::size_t> counts;
+    for (const ModeMetrics& m : rows) {
+        if (m.ran) continue;
+        auto it = std::find_if(modes.begin(), modes.end(), [&](const auto& e) { return e.first == m.mode; });
+        if (it == modes.end()) {
+            modes.push_back({m.mode, {}});
+            counts.push_back(0);
+            it = modes.end() - 1;
+        }
+        ++counts[std::size_t(it - modes.begin())];
+        const std::string reason = m.note.empty() ? "no reason given" : m.note;
+        if (std::find(it->second.begin(), it->second.end(), reason) == it->second.end())
+            it->second.push_back(reason);
+    }
+    std::vector<std::string> lines;
+    for (std::size_t i = 0; i < modes.size(); ++i) {
+        std::string reasons;
+        for (const std::string& r : modes[i].second) reasons += (reasons.empty() ? "" : "; ") + r;
+        lines.push_back("not run: " + modes[i].first + " on " + std::to_string(counts[i]) + " of " +
+                        std::to_string(caseCount) + (caseCount == 1 ? " case" : " cases") + ": " +
+                        reasons);
+    }
+    return lines;
+}
+
 Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<StressCase>& cases,
                     const std::string& command, const std::string& device) {
     Report report;
@@ -26,7 +54,8 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
         "feeler. time: the fastest of three GPU renders, or the CPU tracing. verdict: pass when "
         "there are no flips, wrong ids or acne and the t and normal errors are at most 1e-5 "
         "(naive, robust), 1e-7 and 1e-6 (fp64, whose t and normal reach the host as float) or "
-        "1e-7 and 1e-6 (double).",
+        "1e-7 and 1e-6 (double); not run when the mode could not run (the note says why), "
+        "which is never a pass.",
         "Plots: one per case, a point per mode, x the render time and y the largest relative t "
         "error (0 is drawn below the lowest decade). Lower left is better; the dashed line is the "
         "Pareto front. Hollow red points are modes with flips, wrong ids or acne."};
@@ -49,9 +78,11 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
             compared ? V::num(m.normalErrMax) : V{}, compared ? V::num(m.normalErrRms) : V{},
             feelers ? V::whole((long long)m.acne) : V{},
             feelers ? V::whole((long long)m.feelers) : V{},
-            m.ran ? V::str(withinBounds(m) ? "pass" : "FAIL") : V{}, V::str(naiveFails ? "yes" : "no"),
+            V::str(!m.ran ? "not run" : withinBounds(m) ? "pass" : "FAIL"), V::str(naiveFails ? "yes" : "no"),
             V::str(m.note)});
     }
+    for (const std::string& line : notRunSummary(rows, cases.size()))
+        report.paragraphs.push_back(line);
     for (const StressCase& c : cases)
         report.paragraphs.push_back(c.name + ": " + c.title + ". Stiff: " + c.stiff +
                                     " Correct: " + c.correct);

@@ -325,10 +325,18 @@ void SdlParser::parseSetting(Keyword keyword, const Token& word) {
             break;
         case Keyword::Texture: {
             Token where;
-            const double code = readNumber(word, &where);
-            if (code != 0 && code != 1 && code != 2 && code != 3)
-                throwAt(word, "texture " + where.text +
-                                  " is not one of 0 none, 1 checkerboard, 2 wood, 3 image");
+            double code = readNumber(word, &where);
+            if (code != 0 && code != 1 && code != 2 && code != 3) {
+                const std::string message =
+                    "texture " + where.text + " is not one of 0 none, 1 checkerboard, 2 wood, 3 image";
+                if (!options_.lenient) throwAt(word, message);
+                // Lenient: real files write codes of other dialects (`texture -1`);
+                // the shapes after it are drawn as with `texture 0`.
+                if (warnings_)
+                    warnings_->push_back(
+                        diagnosticAt(word, "warning", message + "; drawn without a texture (as texture 0)"));
+                code = 0;
+            }
             material_.texture = int(code);
             material_.textureLoc = word.loc;
             break;

@@ -110,6 +110,24 @@ TEST_F(Cli, LenientModeWarnsAndRenders) {
     EXPECT_TRUE(fs::exists(dir / "out.png"));
 }
 
+TEST_F(Cli, LenientRenderReadsAnUnknownTextureCodeAsNone) {
+    const std::string s = scene("s.sdl", "camera eye 0 0 5\nlight 5 5 5 1 1 1\ntexture -1\nsphere\n");
+    RunResult run = vkray("render " + s + " --lenient -o " + path("out.png") + " --size 32x24");
+    EXPECT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("s.sdl:3:1: warning: texture -1 is not one of 0 none, 1 checkerboard, "
+                              "2 wood, 3 image; drawn without a texture"),
+              std::string::npos)
+        << run.output;
+    EXPECT_TRUE(fs::exists(dir / "out.png"));
+    // Strict: an error at the same place, and nothing written.
+    fs::remove(dir / "out.png");
+    RunResult strict = vkray("render " + s + " -o " + path("out.png") + " --size 32x24");
+    EXPECT_EQ(strict.status, 1) << strict.output;
+    EXPECT_NE(strict.output.find("s.sdl:3:1: error: texture -1 is not one of"), std::string::npos)
+        << strict.output;
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
+
 TEST_F(Cli, NoVulkanDriverGivesAdviceAndExitsOne) {
     RunResult run = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png"),
                     "VK_ICD_FILENAMES=" + path("none.json"));

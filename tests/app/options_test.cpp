@@ -70,6 +70,20 @@ TEST(Options, BadUsageNamesTheFlag) {
     EXPECT_NE(errorOf({"render", "s.sdl", "--fov", "180"}).find("--fov"), std::string::npos);
 }
 
+// Tolerances apply to --check's comparison: without it they are errors, as --diff is.
+TEST(Options, FailAndFailPercentNeedCheckAsDiffDoes) {
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--diff", "d.png"}),
+              "--diff needs --check (or use `vkray compare`)");
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--fail", "0.1"}),
+              "--fail needs --check (or use `vkray compare`)");
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--failpercent=2"}),
+              "--failpercent needs --check (or use `vkray compare`)");
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--cpu", "--fail", "0"}),
+              "--fail needs --check (or use `vkray compare`)");
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--check", "--fail", "0", "--failpercent", "100"}), "");
+    EXPECT_EQ(errorOf({"compare", "a.png", "b.png", "--fail", "0.1", "--failpercent", "1"}), "");
+}
+
 TEST(Options, SamplesPerPixelAndSeed) {
     const Options defaults = parse({"render", "s.sdl"});
     EXPECT_EQ(defaults.spp, 1);

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -164,15 +165,6 @@ TEST_F(NumericsCli, StressWritesTableCsvJsonHtml) {
 
     EXPECT_NE(run.output.find("result: 4 of 4 rows as expected (PASS)"), std::string::npos) << run.output;
 
-    // fp64 on a device without doubles: the row says why it did not run.
-    test::RunResult noDoubles = test::vkray("stress --cases tiny --size 24x18 --precision fp64 --cases-dir " +
-                                                test::kSourceDir + "/scenes/stress --out " + path("nd"),
-                                            "VKRAY_FAULT=no-float64");
-    EXPECT_EQ(noDoubles.status, 0) << noDoubles.output;
-    EXPECT_NE(noDoubles.output.find("the device has no shaderFloat64"), std::string::npos) << noDoubles.output;
-    EXPECT_NE(noDoubles.output.find("result: 1 of 1 rows as expected (PASS)"), std::string::npos)  // double
-        << noDoubles.output;
-
     // A case that claims to break naive but does not: exit 2, named.
     fs::create_directories(dir / "cases");
     std::ofstream(dir / "cases/easy.sdl")
@@ -188,6 +180,94 @@ TEST_F(NumericsCli, StressWritesTableCsvJsonHtml) {
     EXPECT_EQ(none.status, 1);
     EXPECT_NE(none.output.find("no scene in"), std::string::npos) << none.output;
     EXPECT_EQ(test::vkray("stress extra").status, 1);
+}
+
+// "verdict: note" for each row of a stress.csv whose mode is `mode`.
+std::vector<std::string> verdictsOf(const fs::path& csvPath, const std::string& mode) {
+    const auto csv = test::parseCsv(readFile(csvPath));
+    std::vector<std::string> verdicts;
+    if (csv.empty()) return verdicts;
+    const auto column = [&](const std::string& name) {
+        return size_t(std::find(csv[0].begin(), csv[0].end(), name) - csv[0].begin());
+    };
+    const size_t modeColumn = column("mode"), verdictColumn = column("verdict"), noteColumn = column("note");
+    for (size_t i = 1; i < csv.size(); ++i)
+        if (csv[i].size() > noteColumn && csv[i][modeColumn] == mode)
+            verdicts.push_back(csv[i][verdictColumn] + ": " + csv[i][noteColumn]);
+    return verdicts;
+}
+
+// --precision fp64 on a device without doubles: the one mode asked for did
+// not run, so the run fails, whatever the CPU rows say.
+TEST_F(NumericsCli, StressFailsWhenTheModeAskedForDidNotRun) {
+    test::RunResult run = test::vkray("stress --cases tiny --size 24x18 --precision fp64 --cases-dir " +
+                                          test::kSourceDir + "/scenes/stress --out " + path("nd"),
+                                      "VKRAY_FAULT=no-float64");
+    EXPECT_EQ(run.status, 2) << run.output;
+    EXPECT_EQ(run.output.find("(PASS)"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("not run: fp64 on 1 of 1 case: the device has no shaderFloat64"),
+              std::string::npos)
+        << run.output;
+    EXPECT_NE(run.output.find("result: 1 of 2 rows as expected (1 not run) (FAIL)"), std::string::npos)
+        << run.output;
+    EXPECT_NE(run.output.find("not run"), std::string::npos) << run.output;  // the table's verdict
+    EXPECT_EQ(verdictsOf(dir / "nd/stress.csv", "fp64"),
+              std::vector<std::string>{"not run: the device has no shaderFloat64"});
+    EXPECT_EQ(verdictsOf(dir / "nd/stress.csv", "double"), std::vector<std::string>{"pass: "});
+    const std::string json = readFile(dir / "nd/stress.json");
+    EXPECT_NO_THROW(test::JsonReader(json).document());
+    EXPECT_NE(json.find("\"not run\""), std::string::npos);
+    EXPECT_NE(json.find("not run: fp64 on 1 of 1 case: the device has no shaderFloat64"), std::string::npos);
+    const std::string html = readFile(dir / "nd/stress.html");
+    EXPECT_EQ(test::xmlProblem(html), "");
+    EXPECT_NE(html.find("not run: fp64 on 1 of 1 case: the device has no shaderFloat64"), std::string::npos);
+}
+
+// Every mode (no --precision): fp64 not running fails the run too, and says so.
+TEST_F(NumericsCli, StressOfEveryModeFailsWhenFp64DidNotRun) {
+    test::RunResult run = test::vkray("stress --cases tiny --size 24x18 --cases-dir " + test::kSourceDir +
+                                          "/scenes/stress --out " + path("all"),
+                                      "VKRAY_FAULT=no-float64");
+    EXPECT_EQ(run.status, 2) << run.output;
+    EXPECT_NE(run.output.find("not run: fp64 on 1 of 1 case: the device has no shaderFloat64"),
+              std::string::npos)
+        << run.output;
+    EXPECT_NE(run.output.find("result: 3 of 4 rows as expected (1 not run) (FAIL)"), std::string::npos)
+        << run.output;
+    EXPECT_EQ(verdictsOf(dir / "all/stress.csv", "fp64"),
+              std::vector<std::string>{"not run: the device has no shaderFloat64"});
+    EXPECT_EQ(verdictsOf(dir / "all/stress.csv", "robust"), std::vector<std::string>{"pass: "});
+}
+
+// The build copies scenes/stress next to the binary, as it does shaders/, and
+// the binary looks for its cases there, wherever it is run from: here a copy
+// of the build's binary with what lies next to it, in a folder far from the
+// checkout, run from yet another folder.
+TEST_F(NumericsCli, StressFindsItsCasesNextToTheBinaryFromAnyFolder) {
+    const fs::path binary = VKRAY_BINARY, built = binary.parent_path();
+    ASSERT_TRUE(fs::exists(built / "scenes/stress/tiny_sphere.sdl")) << built;
+    const fs::path bin = dir / "install/bin";
+    fs::create_directories(bin / "scenes");
+    fs::copy_file(binary, bin / "vkray");
+    fs::copy(built / "shaders", bin / "shaders", fs::copy_options::recursive);
+    fs::copy(built / "scenes/stress", bin / "scenes/stress", fs::copy_options::recursive);
+    fs::create_directories(dir / "elsewhere");
+    test::RunResult run = test::runShell("cd " + path("elsewhere") + " && " + (bin / "vkray").string() +
+                                         " stress --cases tiny_sphere --size 32x24 --precision robust");
+    EXPECT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("stress: 1 cases"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("result: 2 of 2 rows as expected (PASS)"), std::string::npos) << run.output;
+    EXPECT_TRUE(fs::exists(dir / "elsewhere/stress-report/stress.csv"));
+
+    // Without them next to it, the error says where it looked and what to pass.
+    fs::remove_all(bin / "scenes");
+    test::RunResult lost = test::runShell("cd " + path("elsewhere") + " && " + (bin / "vkray").string() +
+                                          " stress --cases tiny_sphere --size 32x24");
+    EXPECT_EQ(lost.status, 1) << lost.output;
+    EXPECT_NE(lost.output.find("cannot find the stress cases next to the binary (" +
+                               (bin / "scenes/stress").string() + "); pass --cases-dir DIR"),
+              std::string::npos)
+        << lost.output;
 }
 
 TEST_F(NumericsCli, ReportWritesItsFilesAndNamesBadInput) {
