@@ -1,5 +1,6 @@
 #include "app/commands.h"
 
+#include "app/difftest_command.h"
 #include "app/features_report.h"
 #include "app/pixel_report.h"
 #include "app/progress.h"
@@ -455,6 +456,7 @@ int runOnRank(const Options& o, std::ostream& out, std::ostream& err) {
     case Command::Compare: return runCompare(o, out);
     case Command::Devices: return runDevices(out);
     case Command::Stress: return runStress(o, out, err);
+    case Command::Difftest: return runDifftest(o, out, err);
     case Command::Report: return runReport(o, out, err);
     case Command::Features: return runFeatures(o, out, err);
     }

@@ -109,6 +109,7 @@ const std::map<std::string, Flag>& renderFlags() {
              o.precisionGiven = true;
          }}},
         {"--out", {true, [](Options& o, const std::string& v) { o.outDirectory = v; }}},
+        {"--scenes", {true, [](Options& o, const std::string& v) { o.difftestScenes = parseInt("--scenes", v, 1, 100000000); }}},
         {"--cases", {true, [](Options& o, const std::string& v) { o.casesPattern = v; }}},
         {"--cases-dir", {true, [](Options& o, const std::string& v) { o.casesDirectory = v; }}},
         {"--diff", {true, [](Options& o, const std::string& v) { o.diffPath = v; }}},
@@ -159,6 +160,10 @@ bool accepts(Command command, const std::string& flag) {
                flag == "--precision" ||
                flag == "--eye" || flag == "--look" || flag == "--up" || flag == "--fov";
     case Command::Compare: return flag == "--diff" || flag == "--fail" || flag == "--failpercent";
+    case Command::Difftest:
+        return flag == "--scenes" || flag == "--seed" || flag == "--precision" || flag == "--out" ||
+               flag == "--device" || flag == "--threads" || flag == "--shader-dir" ||
+               flag == "--variant";
     case Command::ShadersCheck: return flag == "--shader-dir" || flag == "--all" || flag == "--precision";
     case Command::Features:
         return flag == "--lenient" || flag == "--variant" || flag == "--shader-dir" || flag == "-D" ||
@@ -182,6 +187,8 @@ std::string usageText() {
   vkray report SCENE.sdl [--size WxH] [--out DIR]          error against run time over the knobs
   vkray features SCENE.sdl [--variant all] [--spp N] [--precision MODE] [--lenient] [-D NAME=VALUE]
                                                   the scene's features, shader variant and buffers
+  vkray difftest [--scenes N] [--seed S] [--precision MODE] [--out DIR]
+                                                  random scenes on GPU and CPU, compared
   vkray devices                                   list Vulkan devices
   vkray shaders check [--all] [--precision MODE] [--shader-dir DIR]
                                                   compile the shader variants
@@ -221,6 +228,16 @@ stress and report options:
   --cases PATTERN       stress: only the cases whose name contains PATTERN
   --cases-dir DIR       stress: the cases' folder (default scenes/stress next to the binary)
 
+difftest options:
+  --scenes N            how many scenes to draw (default 100)
+  --seed S              the first scene's seed (default 0): the same seeds draw the same scenes
+  --precision MODE      draw scenes for this mode only (default: robust or fp64, drawn by seed;
+                        naive, the textbook's float, disagrees by design and comes only on request)
+  --variant all         render every scene with the all-features shader (faster for long runs:
+                        lavapipe compiles it once; default: each scene's own variant)
+  --out DIR             where the scenes that disagree are kept, each with its command
+                        (default difftest)
+
 exit status: 0 success, 1 error, 2 images differ beyond tolerance, 130 interrupted
 )";
 }
@@ -242,6 +259,7 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (verb == "stress") o.command = Command::Stress;
     else if (verb == "report") o.command = Command::Report;
     else if (verb == "features") o.command = Command::Features;
+    else if (verb == "difftest") o.command = Command::Difftest;
     else if (verb == "shaders" && args.size() > 1 && args[1] == "check") {
         o.command = Command::ShadersCheck;
         first = 2;

@@ -15,7 +15,7 @@
 
 namespace vkray {
 
-enum class Command { Help, Version, Render, Pixel, Compare, Devices, ShadersCheck, Stress, Report, Features };
+enum class Command { Help, Version, Render, Pixel, Compare, Devices, ShadersCheck, Stress, Report, Features, Difftest };
 
 // The largest image vkray renders: each side at most kMaxRenderSide and at
 // most kMaxRenderPixels in all (a Frame costs 32 bytes a pixel on the host).
@@ -59,6 +59,9 @@ struct Options {
     std::string casesPattern;
     std::string casesDirectory;  // default: scenes/stress here, else beside the binary's folder
     std::string outDirectory;    // default: stress-report / report-SCENE
+
+    // difftest [--scenes N] [--seed S]: scenes drawn from seeds S .. S + N - 1
+    int difftestScenes = 100;
 
     // pixel SCENE X Y
     int pixelX = 0, pixelY = 0;

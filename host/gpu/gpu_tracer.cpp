@@ -213,7 +213,7 @@ public:
             if (status.counts.y == 0) return;
             ++stats.tilesRedone;
             if (turnBudget == 1)
-                throw Error("the GPU cannot trace one ray of the tile at (" + std::to_string(tx) +
+                throw BeyondTheLoopLimit("the GPU cannot trace one ray of the tile at (" + std::to_string(tx) +
                             ", " + std::to_string(ty) + ") within the driver's loop limit (" +
                             c_.info.name + " ends every loop of an invocation after a fixed "
                             "number of turns; llvmpipe's is 65 535), so the result would be "

@@ -10,6 +10,7 @@
 #include "image/pixel_trace.h"
 #include "numerics/precision.h"
 #include "scene/camera.h"
+#include "scene/error.h"
 #include "scene/render_progress.h"
 #include "scene/scene.h"
 #include "scene/tile_schedule.h"
@@ -59,6 +60,14 @@ ShaderSource variantSource(const std::string& shaderDirectory, const ShaderFeatu
                            Precision precision, const Defines& userDefines);
 
 struct Pipeline;
+
+// The render the device cannot do right: one ray needs more loop turns than
+// the driver runs in one invocation (llvmpipe's loop limit). It is refused
+// rather than drawn wrong.
+class BeyondTheLoopLimit : public Error {
+public:
+    using Error::Error;
+};
 
 // Throws Error, naming the device, where it cannot run the precision mode
 // (fp64 without shaderFloat64).

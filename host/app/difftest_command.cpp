@@ -1,0 +1,125 @@
+#include "app/difftest_command.h"
+
+#include "app/commands.h"
+#include "app/random_scene.h"
+#include "app/watch.h"
+#include "gpu/context.h"
+#include "gpu/gpu_tracer.h"
+#include "image/image_io.h"
+#include "image/metrics.h"
+#include "reference/reference_tracer.h"
+#include "scene/camera.h"
+#include "scene/error.h"
+#include "scene/scene_geometry.h"
+
+#include <chrono>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+namespace vkray {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Verdict {
+    bool agreed = false;
+    std::string refusal;  // the GPU's error, when it refused the scene
+    std::string figures;  // what the comparison found
+};
+
+// One scene on both renderers, compared as `render --check` compares them.
+Verdict judge(const std::string& path, const RandomScene& r, gpu::GpuTracer& tracer,
+              const Options& o) {
+    const Scene scene = loadScene(path, {}, nullptr);
+    const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
+    const RenderSettings settings{r.width, r.height, r.block, r.spp, r.sampleSeed};
+    const CameraBasis basis = makeCameraBasis(camera, settings.width, settings.height);
+    Verdict v;
+    Frame gpu;
+    try {
+        gpu = tracer.render(scene, basis, settings);
+    } catch (const gpu::BeyondTheLoopLimit& refused) {  // right or refused: refused, and said
+        v.refusal = refused.what();
+        return v;
+    }
+    reference::ReferenceOptions reference;
+    reference.threads = o.threads;
+    const Frame cpu = reference::render(scene, basis, settings, reference);
+    CompareResult result = compareImages(colorImage(gpu), colorImage(cpu),
+                                         {kCheckFailThreshold, kCheckFailPercent});
+    compareIds(idImage(gpu), idImage(cpu), result);
+    v.agreed = result.passed && result.idMismatchPercent <= kCheckFailPercent;
+    char text[160];
+    std::snprintf(text, sizeof text, "%.3g %% of pixels over %.2g (largest %.3g), %.3g %% of ids differ",
+                  result.percentOverThreshold, kCheckFailThreshold, result.maxAbsError,
+                  result.idMismatchPercent);
+    v.figures = text;
+    return v;
+}
+
+std::string commandFor(const std::string& path, const RandomScene& r) {
+    return "vkray render " + path + " --size " + std::to_string(r.width) + "x" +
+           std::to_string(r.height) + " --spp " + std::to_string(r.spp) + " --seed " +
+           std::to_string(r.sampleSeed) + " --block " + std::to_string(r.block) +
+           " --precision " + precisionName(r.precision) + " --check";
+}
+
+}  // namespace
+
+int runDifftest(const Options& o, std::ostream& out, std::ostream& err) {
+    const fs::path dir = o.outDirectory.empty() ? fs::path("difftest") : fs::path(o.outDirectory);
+    fs::create_directories(dir);
+    gpu::Context context(gpu::ContextOptions{o.device, false, 0});
+    // One tracer per mode: each keeps its pipeline while the variant stays
+    // (with --variant all, one for the whole run: lavapipe compiles a
+    // variant's machine code, seconds for a large one, once).
+    std::map<Precision, std::unique_ptr<gpu::GpuTracer>> tracers;
+    const auto start = std::chrono::steady_clock::now();
+    std::map<Precision, int> agreed, drawn;
+    int disagreed = 0, refused = 0;
+    const Precision* only = o.precisionGiven ? &o.precision : nullptr;
+    for (int i = 0; i < o.difftestScenes; ++i) {
+        if (stopRequested()) throw Interrupted();
+        const std::uint64_t seed = std::uint64_t(o.seed) + std::uint64_t(i);
+        const RandomScene r = randomScene(seed, only);
+        const std::string path = (dir / ("seed-" + std::to_string(seed) + ".sdl")).string();
+        writeFileAtomically(path, r.sdl);
+        if (!r.meshFile.empty()) writeFileAtomically((dir / r.meshFile).string(), r.meshText);
+        ++drawn[r.precision];
+        std::unique_ptr<gpu::GpuTracer>& tracer = tracers[r.precision];
+        if (!tracer)
+            tracer = std::make_unique<gpu::GpuTracer>(
+                context, gpu::GpuRenderOptions{.shaderDirectory = shaderDirectoryFor(o),
+                                               .allFeatures = o.allFeatures,
+                                               .precision = r.precision});
+        const Verdict v = judge(path, r, *tracer, o);
+        if (v.agreed) {
+            ++agreed[r.precision];
+            fs::remove(path);
+            continue;
+        }
+        if (!v.refusal.empty()) {
+            ++refused;
+            out << "refused  seed " << seed << ": " << v.refusal << "\n  scene: " << path << "\n";
+            continue;
+        }
+        ++disagreed;
+        out << "DISAGREE seed " << seed << " (" << precisionName(r.precision) << "): " << v.figures
+            << "\n  " << commandFor(path, r) << "\n";
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out << "difftest: " << o.difftestScenes << " scenes (seeds " << std::uint64_t(o.seed) << " to "
+        << std::uint64_t(o.seed) + std::uint64_t(std::max(o.difftestScenes, 1) - 1) << ") in "
+        << int(seconds + 0.5) << " s:";
+    for (const auto& [mode, n] : drawn)
+        out << " " << precisionName(mode) << " " << agreed[mode] << " of " << n << " agreed;";
+    out << " " << refused << " refused by the GPU with an error\n";
+    out << "difftest: " << o.difftestScenes - disagreed << " passed, " << disagreed << " failed\n";
+    (void)err;
+    return disagreed > 0 ? 2 : 0;
+}
+
+}  // namespace vkray

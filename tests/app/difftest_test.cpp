@@ -1,0 +1,58 @@
+// `vkray difftest`: a fixed set of seeds draws scenes on which the GPU and
+// the CPU reference agree, and a GPU that draws something else is caught,
+// its scene kept with the command that shows it.
+#include "support/cli_fixture.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace {
+
+using vkray::test::RunResult;
+using vkray::test::vkray;
+using Difftest = vkray::test::CliTest;
+namespace fs = std::filesystem;
+
+size_t scenesLeftIn(const fs::path& folder) {
+    size_t n = 0;
+    for (const auto& entry : fs::directory_iterator(folder)) n += entry.path().extension() == ".sdl";
+    return n;
+}
+
+TEST_F(Difftest, TheFixedSeedsAgree) {
+    // Seeds 100..107 draw five robust and three fp64 scenes (booleans,
+    // polyhedra, meshes, tapers, textures, far and inside views among them).
+    RunResult run = vkray("difftest --scenes 8 --seed 100 --out " + path("found"));
+    EXPECT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("difftest: 8 passed, 0 failed"), std::string::npos) << run.output;
+    EXPECT_EQ(scenesLeftIn(dir / "found"), 0u) << run.output;  // agreeing scenes are not kept
+}
+
+TEST_F(Difftest, AGpuThatDrawsSomethingElseIsCaught) {
+    // The shaders as built, but every light term at half strength.
+    const fs::path shaders = fs::path(VKRAY_BINARY).parent_path() / "shaders";
+    fs::copy(shaders, dir / "shaders", fs::copy_options::recursive);
+    const fs::path shade = dir / "shaders" / "shade.glsl";
+    std::stringstream text;
+    text << std::ifstream(shade).rdbuf();
+    std::string source = text.str();
+    const std::string term = "    return diffuse + specular;\n";
+    ASSERT_NE(source.find(term), std::string::npos);
+    source.replace(source.find(term), term.size(), "    return 0.5 * (diffuse + specular);\n");
+    std::ofstream(shade) << source;
+
+    RunResult run = vkray("difftest --scenes 2 --seed 100 --shader-dir " + path("shaders") +
+                          " --out " + path("found"));
+    EXPECT_EQ(run.status, 2) << run.output;
+    EXPECT_NE(run.output.find("DISAGREE seed 100 "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("difftest: 0 passed, 2 failed"), std::string::npos) << run.output;
+    // Each disagreement is kept, with the command that shows it.
+    EXPECT_TRUE(fs::exists(dir / "found" / "seed-100.sdl"));
+    EXPECT_NE(run.output.find("vkray render " + path("found") + "/seed-100.sdl --size "),
+              std::string::npos)
+        << run.output;
+}
+
+}  // namespace
