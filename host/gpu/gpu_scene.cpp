@@ -163,6 +163,7 @@ private:
         case KIND_SQUARE:
             throw Error(located(leaf, "'square' has no inside and cannot be an operand of '" + op + "'"));
         case KIND_TORUS: return 2;
+        case KIND_TAPERED_CYLINDER: return leaf.taper < 0 ? 2 : 1;  // an hourglass: two
         case KIND_MESH: {
             const TriangleMesh& mesh = *scene_.meshes.at(size_t(leaf.mesh));
             if (!mesh.closed)
@@ -175,7 +176,7 @@ private:
                                               "in CSG (render with --cpu)"));
             return 1;
         }
-        default: return 1;  // sphere, cube, tapered cylinder, plane (a half-space)
+        default: return 1;  // sphere, cube, plane (a half-space)
         }
     }
 

@@ -57,10 +57,12 @@ SpanList primitiveSpans(uint index, rvec3 origin, rvec3 direction) {
     case KIND_PLANE: planeSpans(o, d, index, list); break;
 #endif
 #if VKRAY_SHAPE_TAPERED_CYLINDER
-    case KIND_TAPERED_CYLINDER:
-        if (taperedCylinderSpan(o, d, taperOf(index), t0, n0, t1, n1))
-            addSpan(list, t0, n0, t1, n1, index);
+    case KIND_TAPERED_CYLINDER: {  // an hourglass (s < 0) may give two spans
+        TaperedSpans spans = taperedCylinderSpans(o, d, taperOf(index));
+        if (spans.count > 0) addSpan(list, spans.t0, spans.n0, spans.t1, spans.n1, index);
+        if (spans.count > 1) addSpan(list, spans.t2, spans.n2, spans.t3, spans.n3, index);
         break;
+    }
 #endif
 #if VKRAY_SHAPE_TORUS
     case KIND_TORUS: {

@@ -54,6 +54,65 @@ TEST(GpuShapes, ConeAndTaperedCylinderWalls) {
     EXPECT_EQ(traceOne("cone", {0.9, 0, 2}, {0.9, 0, 0}, {0, 1, 0}).id[0], 0);
 }
 
+TEST(GpuShapes, HourglassTaperMinusOne) {
+    // s = -1: k = -2, rho(z) = 1 - 2z, radius |rho| = 1 at both ends, 0 at the
+    // apex z = 1/2; the wall normal is (x, y, -k rho) = (x, y, 2 rho).
+    const std::string hourglass = "taperedCylinder -1";
+    // Upper nappe at z = 0.75: radius 0.5, normal (0.5, 0, -1), leaning down.
+    expectHit(traceOne(hourglass, {3, 0, 0.75}, {0, 0, 0.75}), 0, 2.5,
+              glm::dvec3(1, 0, -2) / std::sqrt(5.0));
+    // Lower nappe at z = 0.25: radius 0.5, normal (0.5, 0, 1).
+    expectHit(traceOne(hourglass, {3, 0, 0.25}, {0, 0, 0.25}), 0, 2.5,
+              glm::dvec3(1, 0, 2) / std::sqrt(5.0));
+    // The top cap (radius |s| = 1) from above, not the upper nappe beneath it.
+    expectHit(traceOne(hourglass, {0.25, 0, 5}, {0.25, 0, 0}, {0, 1, 0}), 0, 4.0, {0, 0, 1});
+    // From the waist (outside: 0.25 > |rho(0.5)| = 0) straight up: the upper
+    // nappe's inside begins where 1 - 2z = -0.25, z = 0.625, normal (0.25, 0, -0.5).
+    expectHit(traceOne(hourglass, {0.25, 0, 0.5}, {0.25, 0, 1}, {0, 1, 0}), 0, 0.125,
+              glm::dvec3(1, 0, -2) / std::sqrt(5.0));
+    // Through the waist sideways, 0.1 off the apex: nothing.
+    EXPECT_EQ(traceOne(hourglass, {3, 0.1, 0.5}, {0, 0.1, 0.5}).id[0], -1);
+}
+
+TEST(GpuShapes, HourglassTaperMinusHalf) {
+    // s = -0.5: k = -1.5, rho(z) = 1 - 1.5z, apex at z = 2/3, top cap radius 0.5.
+    const std::string hourglass = "taperedCylinder -0.5";
+    // Upper nappe at z = 0.8: rho = -0.2, normal (0.2, 0, -0.3).
+    expectHit(traceOne(hourglass, {3, 0, 0.8}, {0, 0, 0.8}), 0, 2.8,
+              glm::dvec3(2, 0, -3) / std::sqrt(13.0));
+    // Top cap from above at x = 0.3; at x = 0.6 (beyond the cap) down to the
+    // lower nappe at rho = 0.6, z = 4/15, normal (0.6, 0, 0.9).
+    expectHit(traceOne(hourglass, {0.3, 0, 5}, {0.3, 0, 0}, {0, 1, 0}), 0, 4.0, {0, 0, 1});
+    expectHit(traceOne(hourglass, {0.6, 0, 5}, {0.6, 0, 0}, {0, 1, 0}), 0, 5 - 4.0 / 15,
+              glm::dvec3(2, 0, 3) / std::sqrt(13.0));
+    // Bottom cap from below; from the waist (rho(0.5) = 0.25 < 0.3) up to the
+    // upper nappe at rho = -0.3, z = 13/15, normal (0.3, 0, -0.45).
+    expectHit(traceOne(hourglass, {0.3, 0, -1}, {0.3, 0, 0}, {0, 1, 0}), 0, 1.0, {0, 0, -1});
+    expectHit(traceOne(hourglass, {0.3, 0, 0.5}, {0.3, 0, 1}, {0, 1, 0}), 0, 13.0 / 15 - 0.5,
+              glm::dvec3(2, 0, -3) / std::sqrt(13.0));
+}
+
+TEST(GpuShapes, CsgOfAnHourglassHasTwoSpans) {
+    // taperedCylinder -1 less the box z <= 0.45: a vertical line at x = 0.25
+    // is inside the hourglass for z <= 0.375 and z >= 0.625, so from below it
+    // passes the removed part and the waist and meets the upper nappe at
+    // z = 0.625 (normal (0.25, 0, -0.5)); the cut face z = 0.45 is there only
+    // within radius 0.1.
+    const std::string cut =
+        "difference taperedCylinder -1 push translate 0 0 -0.55 scale 2 2 1 cube pop";
+    expectHit(traceOne(cut, {0.25, 0, -3}, {0.25, 0, 0}, {0, 1, 0}), 0, 3.625,
+              glm::dvec3(1, 0, -2) / std::sqrt(5.0));
+    expectHit(traceOne(cut, {0.05, 0, -3}, {0.05, 0, 0}, {0, 1, 0}), 0, 3.45, {0, 0, -1});
+    expectHit(traceOne(cut, {0.25, 0, 5}, {0.25, 0, 0}, {0, 1, 0}), 0, 4.0, {0, 0, 1});
+    // The hourglass within the slab 0.4 <= z <= 0.6: from the waist at x = 0.15
+    // up, the second span begins at the upper nappe, 1 - 2z = -0.15.
+    const std::string waist =
+        "intersection taperedCylinder -1 push translate 0 0 0.5 scale 2 2 0.1 cube pop";
+    expectHit(traceOne(waist, {0.15, 0, 0.5}, {0.15, 0, 1}, {0, 1, 0}), 0, 0.075,
+              glm::dvec3(1, 0, -2) / std::sqrt(5.0));
+    expectHit(traceOne(waist, {0.15, 0, -3}, {0.15, 0, 0}, {0, 1, 0}), 0, 3.4, {0, 0, -1});
+}
+
 TEST(GpuShapes, TorusAlongTheXAxis) {
     // (-3, 0, 0) + (1, 0, 0) t crosses the tube at x = -1.25: distance 1.75.
     expectHit(traceOne("torus", {-3, 0, 0}, {0, 0, 0}), 0, 1.75, {-1, 0, 0}, 1e-5);
@@ -109,6 +168,22 @@ TEST(GpuShapes, CsgRefusesASquareOperandWithItsPlace) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("t.sdl:2:3: error: 'square' has no inside"),
                   std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(GpuShapes, CsgCountsTwoSpansForAnHourglass) {
+    // Four hourglasses may need 8 spans along a line, as many as a GPU list
+    // holds; five may need 10 and are refused (the host once counted one each).
+    const std::string h = " taperedCylinder -1";
+    const std::string four = "union union" + h + h + " union" + h + h;
+    const CameraBasis camera = makeCameraBasis(Camera{}, 4, 4);
+    EXPECT_NO_THROW(test::renderOnGpu(parseSdl(four, "t.sdl", {}), camera, {4, 4, 1}));
+    try {
+        test::renderOnGpu(parseSdl("union " + four + h, "t.sdl", {}), camera, {4, 4, 1});
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("'union' needs up to 10 spans"), std::string::npos)
             << e.what();
     }
 }
