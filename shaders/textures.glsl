@@ -61,7 +61,10 @@ vec3 textureColor(GpuObject surface, vec3 g, vec3 genericNormal) {
         return odd ? parameters.yzw : vec3(1.0);
     }
     if (code == TEXTURE_WOOD) {
-        bool odd = (int(floor(sqrt(dot(g.xy, g.xy)) / parameters.x)) & 1) != 0;
+        // Rings of width parameters.x about the z axis, shifted half a ring
+        // like the checkerboard's cells, so that radius 1 (a cylinder's wall)
+        // and 0 (the axis) lie inside rings, not on their borders.
+        bool odd = (int(floor(sqrt(dot(g.xy, g.xy)) / parameters.x + 0.5)) & 1) != 0;
         return odd ? parameters.yzw : vec3(1.0);
     }
 #endif

@@ -51,7 +51,9 @@ glm::dvec3 checkerboard(const glm::dvec3& g, double size, const glm::dvec3& colo
 }
 
 glm::dvec3 woodRings(const glm::dvec3& g, double width, const glm::dvec3& color) {
-    const double ring = std::floor(std::sqrt(g.x * g.x + g.y * g.y) / width);
+    // Half a ring of shift, as for the checkerboard's cells: when width = 1/n
+    // the generic cylinder's wall (radius 1) and the axis lie mid-ring.
+    const double ring = std::floor(std::sqrt(g.x * g.x + g.y * g.y) / width + 0.5);
     return isOdd(ring) ? color : glm::dvec3(1);
 }
 

@@ -24,7 +24,8 @@ glm::dvec3 textureColor(const Scene& scene, const SceneObject& surface, const gl
 // The parts, each from generic coordinates g:
 // 1: 3D checkerboard of cells `size`, odd cells `color`.
 glm::dvec3 checkerboard(const glm::dvec3& g, double size, const glm::dvec3& color);
-// 2: rings of `width` about the generic z axis, odd rings `color`.
+// 2: rings of `width` about the generic z axis, shifted half a ring (ring
+// floor(r / width + 1/2)), odd rings `color`.
 glm::dvec3 woodRings(const glm::dvec3& g, double width, const glm::dvec3& color);
 // 3: (u, v) of g on the generic shape of `type` (genericNormal: the outward
 // normal there, any length), and the nearest texel at (u, v) (u wraps, v is

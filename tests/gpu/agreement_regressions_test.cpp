@@ -103,5 +103,20 @@ TEST(AgreementRegressions, HourglassInCsgHasTwoSpans) {
                                {96, 72}));
 }
 
+// Wood rings of width 1/k once had a boundary at radius 1, on the cylinder's
+// own wall: float and double picked different rings (5.7 % of these pixels
+// at either width).
+TEST(AgreementRegressions, WoodRingsOnACylinderWall) {
+    for (const char* width : {"0.1", "0.25"}) {
+        SCOPED_TRACE(width);
+        expectAgreement(renderBoth(std::string("camera eye 3 2.5 2.5 look 0 0 0.5 up 0 0 1 fov 45\n"
+                                               "light 5 4 8 1 1 1\nglobalAmbient 0.3 0.3 0.3\n"
+                                               "ambient 0.3 0.3 0.3 diffuse 0.7 0.7 0.7\n"
+                                               "texture 2 parameters 4 ") +
+                                       width + " 0.55 0.35 0.15\ncylinder\n",
+                                   {96, 72}));
+    }
+}
+
 }  // namespace
 }  // namespace vkray

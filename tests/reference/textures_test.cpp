@@ -67,13 +67,33 @@ TEST(Textures, CheckerboardCellsShiftedByHalfACell) {
     expectNear(checkerboard({-0.3, -0.3, 0}, 0.5, odd), glm::dvec3(1), 0); // -2: even
 }
 
-TEST(Textures, WoodRingsAboutTheZAxis) {
+TEST(Textures, WoodRingsAboutTheZAxisShiftedByHalfARing) {
+    // ring = floor(r / w + 1/2): ring 0 is the disk r < w/2, ring j the band
+    // (j - 1/2) w <= r < (j + 1/2) w; odd rings take the colour.
     const glm::dvec3 odd(0.55, 0.35, 0.15);
-    expectNear(woodRings({0.05, 0, 7}, 0.1, odd), glm::dvec3(1), 0);  // ring 0
-    expectNear(woodRings({0.09, 0.09, 0}, 0.1, odd), odd, 0);        // r = 0.127: ring 1
-    expectNear(woodRings({0, -0.25, 0}, 0.1, odd), glm::dvec3(1), 0);  // ring 2
-    expectNear(woodRings({0.3, 0.4, 0}, 0.2, odd), glm::dvec3(1), 0);  // r = 0.5: ring 2
-    expectNear(woodRings({0.3, 0.4, 0}, 0.3, odd), odd, 0);            // ring 1
+    expectNear(woodRings({0.02, 0, 7}, 0.1, odd), glm::dvec3(1), 0);   // 0.2 + 0.5: ring 0
+    expectNear(woodRings({0.06, 0, 0}, 0.1, odd), odd, 0);             // 0.6 + 0.5: ring 1
+    expectNear(woodRings({0.09, 0.09, 0}, 0.1, odd), odd, 0);         // r = 0.127: ring 1
+    expectNear(woodRings({0, -0.22, 0}, 0.1, odd), glm::dvec3(1), 0);  // 2.2 + 0.5: ring 2
+    expectNear(woodRings({0.3, 0.4, 0}, 0.3, odd), glm::dvec3(1), 0);  // r = 0.5: ring 2 (2.17)
+    expectNear(woodRings({0.3, 0.4, 0}, 0.4, odd), odd, 0);            // 1.25 + 0.5: ring 1
+}
+
+TEST(Textures, WoodRingBoundariesMissTheCylinderWall) {
+    // For a width w = 1/k, radius 1 is ring k's middle (r / w + 1/2 = k + 1/2),
+    // so the generic cylinder's wall and its neighbourhood are all one ring,
+    // even (white) for k = 10 and 4, odd (the colour) for k = 3 and 5.
+    const glm::dvec3 odd(0.55, 0.35, 0.15), white(1);
+    for (const glm::dvec3& g : {glm::dvec3(1, 0, 0.5), glm::dvec3(0.6, -0.8, 0),
+                                glm::dvec3(0.96, 0, 1), glm::dvec3(0, 1.04, 0)})
+        expectNear(woodRings(g, 0.1, odd), white, 0);  // 9.6 .. 10.4, + 0.5: ring 10
+    expectNear(woodRings({0.9, 0, 0}, 0.25, odd), white, 0);  // 3.6 + 0.5: ring 4
+    expectNear(woodRings({-1, 0, 0}, 0.25, odd), white, 0);
+    expectNear(woodRings({0, 1.1, 0}, 0.25, odd), white, 0);  // 4.4 + 0.5
+    expectNear(woodRings({0, -1, 0.3}, 1.0 / 3, odd), odd, 0);  // 3 + 0.5: ring 3
+    expectNear(woodRings({0.8, 0.6, 0}, 0.2, odd), odd, 0);     // 5 + 0.5: ring 5
+    // The axis (a cone's apex) is in the middle of ring 0.
+    expectNear(woodRings({0, 0, 1}, 0.1, odd), white, 0);
 }
 
 TEST(Textures, UvOfEveryShape) {
@@ -137,10 +157,10 @@ TEST(Textures, CheckerboardOnATransformedCube) {
 
 TEST(Textures, WoodWithDefaultsOnACylinderCap) {
     // Default width 0.1 and colour (0.55, 0.35, 0.15). Looking down on the
-    // top cap (z = 1): r = 0.15 is ring 1, r = 0.25 ring 2.
+    // top cap (z = 1): r = 0.27 is ring 3 (2.7 + 0.5), r = 0.18 ring 2.
     const Scene scene = texturedScene("texture 2 cylinder");
-    expectNear(seen(scene, {0.15, 0, 5}, {0.15, 0, 0}), glm::dvec3(0.55, 0.35, 0.15), 1e-15);
-    expectNear(seen(scene, {0, 0.25, 5}, {0, 0.25, 0}), glm::dvec3(1), 0);
+    expectNear(seen(scene, {0.27, 0, 5}, {0.27, 0, 0}), glm::dvec3(0.55, 0.35, 0.15), 1e-15);
+    expectNear(seen(scene, {0, 0.18, 5}, {0, 0.18, 0}), glm::dvec3(1), 0);
 }
 
 TEST(Textures, ImageOnASphereAtAKnownUv) {
