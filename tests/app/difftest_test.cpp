@@ -31,28 +31,36 @@ TEST_F(Difftest, TheFixedSeedsAgree) {
 }
 
 TEST_F(Difftest, AGpuThatDrawsSomethingElseIsCaught) {
-    // The shaders as built, but every light term at half strength.
+    // The shaders as built, but every light term and the background at 90 %
+    // of their strength: a GPU that is only a little wrong.
     const fs::path shaders = fs::path(VKRAY_BINARY).parent_path() / "shaders";
     fs::copy(shaders, dir / "shaders", fs::copy_options::recursive);
     const fs::path shade = dir / "shaders" / "shade.glsl";
     std::stringstream text;
     text << std::ifstream(shade).rdbuf();
     std::string source = text.str();
-    const std::string term = "    return diffuse + specular;\n";
-    ASSERT_NE(source.find(term), std::string::npos);
-    source.replace(source.find(term), term.size(), "    return 0.5 * (diffuse + specular);\n");
+    for (const auto& [from, to] :
+         {std::pair<std::string, std::string>{"    return diffuse + specular;\n",
+                                              "    return 0.9 * (diffuse + specular);\n"},
+          {"task.weight * frame.background.rgb", "task.weight * 0.9 * frame.background.rgb"}}) {
+        ASSERT_NE(source.find(from), std::string::npos) << from;
+        source.replace(source.find(from), from.size(), to);
+    }
     std::ofstream(shade) << source;
 
-    RunResult run = vkray("difftest --scenes 2 --seed 100 --shader-dir " + path("shaders") +
+    RunResult run = vkray("difftest --scenes 3 --seed 100 --shader-dir " + path("shaders") +
                           " --out " + path("found"));
     EXPECT_EQ(run.status, 2) << run.output;
-    EXPECT_NE(run.output.find("DISAGREE seed 100 "), std::string::npos) << run.output;
-    EXPECT_NE(run.output.find("difftest: 0 passed, 2 failed"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("difftest: 0 passed, 3 failed"), std::string::npos) << run.output;
     // Each disagreement is kept, with the command that shows it.
-    EXPECT_TRUE(fs::exists(dir / "found" / "seed-100.sdl"));
-    EXPECT_NE(run.output.find("vkray render " + path("found") + "/seed-100.sdl --size "),
-              std::string::npos)
-        << run.output;
+    for (int seed = 100; seed < 103; ++seed) {
+        const std::string file = path("found") + "/seed-" + std::to_string(seed) + ".sdl";
+        EXPECT_NE(run.output.find("DISAGREE seed " + std::to_string(seed) + " "), std::string::npos)
+            << run.output;
+        EXPECT_TRUE(fs::exists(file)) << file;
+        EXPECT_NE(run.output.find("vkray render " + file + " --size "), std::string::npos)
+            << run.output;
+    }
 }
 
 }  // namespace
