@@ -247,10 +247,9 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
     bool walking = hitsBox(root.lo.xyz, root.hi.xyz, origin, invD, 0.0, hit.t, enter);
     bool leafDone = false;  // the last leaf is tested: the walk goes on from the stack
     while (through > 0.0) {
-        for (uint i = leafFirst; i < leafFirst + leafCount && through > 0.0; ++i) {
-            ++loopTurns;
+        loopTurns += leafCount;
+        for (uint i = leafFirst; i < leafFirst + leafCount && through > 0.0; ++i)
             testObject(objectIndex[i], origin, direction, feeler, hit, through);
-        }
         leafCount = 0u;
         while (walking || leafDone) {
             ++loopTurns;
@@ -290,10 +289,9 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
         if (leafCount == 0u) break;
     }
 #else
-    for (uint i = 0u; i < frame.image.w && through > 0.0; ++i) {
-        ++loopTurns;
+    loopTurns += frame.image.w;
+    for (uint i = 0u; i < frame.image.w && through > 0.0; ++i)
         testObject(i, origin, direction, feeler, hit, through);
-    }
 #endif
     if (!feeler && hit.object < 0) hit.t = INFINITY;
 }

@@ -81,8 +81,8 @@ bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real 
                 continue;
             }
         } else {
+            loopTurns += count;
             for (uint i = first; i < first + count; ++i) {
-                ++loopTurns;
                 GpuTriangle tri = triangles[mesh.range.y + i];
                 real tHit;
                 rvec3 bary;
