@@ -3,10 +3,11 @@
 // keep the closest hit, and shade it as Hill's shade() does (shade.glsl).
 //
 // The host compiles a variant holding only what the scene uses (host/gpu/
-// shader_variant.h): VKRAY_SHAPE_SPHERE, _PLANE, _SQUARE, _CUBE,
-// _TAPERED_CYLINDER, _TORUS, _MESH and VKRAY_CSG are 1 for the shapes
-// present; VKRAY_SHADOWS, _REFLECTION, _REFRACTION, _TEXTURES, _PIXMAPS and
-// _ANTIALIAS add the parts of Whitted shading the scene uses;
+// shader_variant.h), every flag defined 0 or 1 (variant_flags.glsl checks):
+// VKRAY_SHAPE_SPHERE, _PLANE, _SQUARE, _CUBE, _TAPERED_CYLINDER, _TORUS,
+// _MESH and VKRAY_CSG are 1 for the shapes present; VKRAY_SHADOWS,
+// _REFLECTION, _REFRACTION, _TEXTURES, _PIXMAPS and _ANTIALIAS add the parts
+// of Whitted shading the scene uses;
 // VKRAY_OBJECT_BVH finds objects through a BVH instead of testing each;
 // VKRAY_DEBUG_PIXEL (for `vkray pixel`) also records every step of the one
 // ray the host dispatches into the debug buffer. VKRAY_PRECISION_NAIVE
@@ -14,6 +15,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
+#include "variant_flags.glsl"
 #include "layout.h"
 #if VKRAY_ANTIALIAS
 #include "sampling.h"

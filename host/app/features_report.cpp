@@ -172,9 +172,13 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
         << (precision == Precision::Fp64 ? " (double in the shader" : " (float in the shader")
         << "; the CPU reference is double)\n";
     out << "variant: " << gpu::describe(features) << "\n";
+    // The flags that are on and the user's defines; every other flag is 0.
+    const std::vector<std::string> flags = gpu::variantFlags();
     out << "defines:";
-    for (const auto& [name, value] : defines) out << " " << name << "=" << value;
-    out << (defines.empty() ? " none\n" : "\n");
+    for (const auto& [name, value] : defines)
+        if (value != "0" || std::find(flags.begin(), flags.end(), name) == flags.end())
+            out << " " << name << "=" << value;
+    out << " (every other variant flag 0)\n";
     out << "key: " << key << " (SPIR-V cache key)\n";
     out << "buffers:\n";
     const gpu::GpuScene packed = gpu::packScene(scene, features);

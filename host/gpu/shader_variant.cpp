@@ -75,15 +75,28 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
 }
 
 Defines definesFor(const ShaderFeatures& features, const Defines& userDefines) {
+    // Every flag, 0 or 1: trace.comp refuses to compile without one
+    // (shaders/variant_flags.glsl), so a flag cannot go missing in silence.
+    const auto flag = [](bool on) { return on ? "1" : "0"; };
     Defines defines;
     for (std::size_t kind = 0; kind < kGpuKinds.size(); ++kind)
-        if (features.kinds[kind]) defines.emplace_back(kGpuKinds[kind].define, "1");
+        defines.emplace_back(kGpuKinds[kind].define, flag(features.kinds[kind]));
     for (std::size_t i = 0; i < kGpuShading.size(); ++i)
-        if (features.shading[i]) defines.emplace_back(kGpuShading[i].define, "1");
-    if (features.objectBvh) defines.emplace_back("VKRAY_OBJECT_BVH", "1");
-    if (features.debugPixel) defines.emplace_back("VKRAY_DEBUG_PIXEL", "1");
+        defines.emplace_back(kGpuShading[i].define, flag(features.shading[i]));
+    defines.emplace_back("VKRAY_OBJECT_BVH", flag(features.objectBvh));
+    defines.emplace_back("VKRAY_DEBUG_PIXEL", flag(features.debugPixel));
     defines.insert(defines.end(), userDefines.begin(), userDefines.end());
     return defines;
+}
+
+std::vector<std::string> variantFlags() {
+    std::vector<std::string> flags;
+    for (const GpuKind& kind : kGpuKinds) flags.push_back(kind.define);
+    for (const GpuShading& shading : kGpuShading) flags.push_back(shading.define);
+    for (const char* other : {"VKRAY_OBJECT_BVH", "VKRAY_DEBUG_PIXEL", "VKRAY_PRECISION_NAIVE",
+                              "VKRAY_PRECISION_FP64"})
+        flags.push_back(other);
+    return flags;
 }
 
 std::string describe(const ShaderFeatures& features) {

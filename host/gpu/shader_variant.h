@@ -73,8 +73,14 @@ struct ShaderFeatures {
 // scene's size, so it stays as needed).
 ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bool allFeatures);
 
-// The defines of a variant, followed by the user's own (-D NAME=VALUE).
+// The defines of a variant, every flag 0 or 1, followed by the user's own
+// (-D NAME=VALUE; the precision mode's flags come that way, precisionDefines).
 Defines definesFor(const ShaderFeatures& features, const Defines& userDefines = {});
+
+// Every flag a variant defines, 0 or 1: the shapes, the shading features,
+// VKRAY_OBJECT_BVH, VKRAY_DEBUG_PIXEL and the precision modes' two. The one
+// list; shaders/variant_flags.glsl checks each is defined.
+std::vector<std::string> variantFlags();
 
 // "sphere+cube", "all shapes", "no shapes", then the shading features
 // ("+shadows+reflection", "+all shading"), "+bvh", "+debug-pixel" and "+fp64".

@@ -24,9 +24,8 @@ Precision parsePrecision(const std::string& flag, const std::string& text) {
 }
 
 std::vector<std::pair<std::string, std::string>> precisionDefines(Precision precision) {
-    if (precision == Precision::Naive) return {{"VKRAY_PRECISION_NAIVE", "1"}};
-    if (precision == Precision::Fp64) return {{"VKRAY_PRECISION_FP64", "1"}};
-    return {};
+    return {{"VKRAY_PRECISION_NAIVE", precision == Precision::Naive ? "1" : "0"},
+            {"VKRAY_PRECISION_FP64", precision == Precision::Fp64 ? "1" : "0"}};
 }
 
 namespace {

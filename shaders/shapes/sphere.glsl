@@ -34,7 +34,7 @@ bool sphereSpan(rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real t1, out rv
 bool sphereSpan(rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real t1, out rvec3 n1) {
     real a = dot(d, d);
     real b = dot(o, d);  // half of the textbook b
-#if VKRAY_SPHERE_EARLY_OUT
+#ifdef VKRAY_SPHERE_EARLY_OUT  // an experiment: off unless -D defines it
     // Benchmark experiment (BENCHMARKS.md): origin outside, moving away.
     if (b > 0.0 && dot(o, o) > 1.0) return false;
 #endif

@@ -53,7 +53,7 @@ TEST_F(Features, DefaultSceneReport) {
     EXPECT_EQ(field(run.output, "variant"), "sphere+plane+square+cube+shadows");
     EXPECT_EQ(field(run.output, "defines"),
               "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_SQUARE=1 VKRAY_SHAPE_CUBE=1 "
-              "VKRAY_SHADOWS=1");
+              "VKRAY_SHADOWS=1 (every other variant flag 0)");
     // GpuObject is 10 vec4 (160 bytes), GpuLight 2 (32), FrameParams 9 (144).
     const std::vector<std::string> expected{
         "0 frame uniform 144 bytes",
@@ -76,7 +76,7 @@ TEST_F(Features, MeshSceneBindsMeshAndBvhBuffers) {
     EXPECT_EQ(field(run.output, "variant"), "sphere+plane+mesh+shadows+bvh");
     EXPECT_EQ(field(run.output, "defines"),
               "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_MESH=1 VKRAY_SHADOWS=1 "
-              "VKRAY_OBJECT_BVH=1");
+              "VKRAY_OBJECT_BVH=1 (every other variant flag 0)");
     const std::vector<std::string> lines = buffers(run.output);
     std::vector<std::string> bound;
     for (const std::string& line : lines) bound.push_back(line.substr(0, line.find(" storage")));
@@ -99,7 +99,7 @@ TEST_F(Features, VariantAllCompilesEveryFeatureAndBindsTheirBuffers) {
               "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_SQUARE=1 VKRAY_SHAPE_CUBE=1 "
               "VKRAY_SHAPE_TAPERED_CYLINDER=1 VKRAY_SHAPE_TORUS=1 VKRAY_SHAPE_MESH=1 VKRAY_CSG=1 "
               "VKRAY_SHADOWS=1 VKRAY_REFLECTION=1 VKRAY_REFRACTION=1 VKRAY_TEXTURES=1 "
-              "VKRAY_PIXMAPS=1 VKRAY_ANTIALIAS=1 EXTRA=2");
+              "VKRAY_PIXMAPS=1 VKRAY_ANTIALIAS=1 EXTRA=2 (every other variant flag 0)");
     // The scene's own needs are still reported as the scene's.
     EXPECT_EQ(field(run.output, "reflection").substr(0, 3), "no ") << run.output;
     // The pending rays (maxRecursionDepth 3 + 1 entries), the mesh, CSG and

@@ -1,6 +1,10 @@
 #include "gpu/shader_compiler.h"
+#include "gpu/shader_variant.h"
 #include "gpu/spirv_cache.h"
+#include "numerics/precision.h"
+#include "shaders/layout.h"
 #include "scene/error.h"
+#include "support/error_of.h"
 #include "support/gpu_fixture.h"
 
 #include <gtest/gtest.h>
@@ -37,13 +41,27 @@ const char* kTinyMain =
     "void main() { v[0] = helper(); }\n";
 
 TEST(ShaderCompiler, CompilesTheTracerInEveryShapeVariant) {
-    ShaderSource source{test::kShaderDir, "trace.comp", {}};
-    for (const char* define : {"VKRAY_SHAPE_SPHERE", "VKRAY_SHAPE_PLANE", "VKRAY_SHAPE_SQUARE",
-                               "VKRAY_SHAPE_CUBE"}) {
-        source.defines.emplace_back(define, "1");
+    ShaderFeatures features;
+    for (std::uint32_t kind : {KIND_SPHERE, KIND_PLANE, KIND_SQUARE, KIND_CUBE}) {
+        features.kinds[kind] = true;
+        const ShaderSource source{test::kShaderDir, "trace.comp",
+                                  definesFor(features, precisionDefines(Precision::Robust))};
         std::vector<std::uint32_t> spirv = compileComputeShader(source);
         ASSERT_GT(spirv.size(), 5u);
         EXPECT_EQ(spirv[0], kSpirvMagic);
+    }
+}
+
+TEST(ShaderCompiler, TheTracerRefusesAVariantWithAFlagMissing) {
+    // GLSL reads an undefined name in #if as 0: without the check, a flag the
+    // host forgot would leave its code out in silence.
+    for (const std::string& missing : variantFlags()) {
+        Defines defines = definesFor(ShaderFeatures{}, precisionDefines(Precision::Robust));
+        std::erase_if(defines, [&](const auto& d) { return d.first == missing; });
+        const std::string message =
+            errorOf([&] { compileComputeShader({test::kShaderDir, "trace.comp", defines}); });
+        EXPECT_NE(message.find("variant_flags.glsl"), std::string::npos) << missing << ": " << message;
+        EXPECT_NE(message.find("is not defined"), std::string::npos) << missing << ": " << message;
     }
 }
 

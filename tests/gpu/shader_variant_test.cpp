@@ -8,6 +8,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
 
 namespace vkray::gpu {
 namespace {
@@ -17,6 +22,69 @@ ShaderFeatures featuresOfText(const std::string& sdl, int spp = 1) {
     RenderSettings settings;
     settings.spp = spp;
     return featuresOf(scene, settings, false);
+}
+
+// Every shader source, by path.
+std::vector<std::pair<std::string, std::string>> shaderSources() {
+    std::vector<std::pair<std::string, std::string>> files;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(VKRAY_SOURCE_DIR "/shaders")) {
+        if (!entry.is_regular_file()) continue;
+        std::stringstream text;
+        text << std::ifstream(entry.path()).rdbuf();
+        files.emplace_back(entry.path().string(), text.str());
+    }
+    return files;
+}
+
+TEST(ShaderVariant, EveryFlagAShaderTestsIsAVariantFlag) {
+    // A misspelt `#if VKRAY_SHAODWS` would read as 0 and leave code out in
+    // silence. Every VKRAY_ name an #if or #elif reads (outside defined())
+    // is a variant flag or a name the shaders #define themselves.
+    const std::vector<std::string> list = variantFlags();
+    std::set<std::string> known(list.begin(), list.end());
+    const std::regex defineLine(R"(^\s*#\s*define\s+(VKRAY_\w+))");
+    const std::regex condition(R"(^\s*#\s*(if|elif)\s+(.*)$)");
+    const std::regex inDefined(R"(defined\s*\(\s*VKRAY_\w+\s*\))");
+    const std::regex name(R"(VKRAY_\w+)");
+    const auto sources = shaderSources();
+    for (const auto& [path, text] : sources) {
+        std::istringstream lines(text);
+        std::smatch m;
+        for (std::string line; std::getline(lines, line);)
+            if (std::regex_search(line, m, defineLine)) known.insert(m[1]);
+    }
+    int tested = 0;
+    for (const auto& [path, text] : sources) {
+        std::istringstream lines(text);
+        int number = 0;
+        std::smatch m;
+        for (std::string line; std::getline(lines, line);) {
+            ++number;
+            if (!std::regex_match(line, m, condition)) continue;
+            const std::string expression = std::regex_replace(std::string(m[2]), inDefined, "");
+            for (auto it = std::sregex_iterator(expression.begin(), expression.end(), name);
+                 it != std::sregex_iterator(); ++it) {
+                ++tested;
+                EXPECT_TRUE(known.count(it->str())) << path << ":" << number << ": " << it->str()
+                                                    << " is not a variant flag";
+            }
+        }
+    }
+    EXPECT_GT(tested, 40);  // the shaders' guards were found
+}
+
+TEST(ShaderVariant, TheShaderChecksEveryVariantFlag) {
+    // shaders/variant_flags.glsl names exactly the flags of variantFlags().
+    std::stringstream text;
+    text << std::ifstream(VKRAY_SOURCE_DIR "/shaders/variant_flags.glsl").rdbuf();
+    const std::string checks = text.str();
+    std::set<std::string> checked;
+    const std::regex inDefined(R"(defined\((VKRAY_\w+)\))");
+    for (auto it = std::sregex_iterator(checks.begin(), checks.end(), inDefined);
+         it != std::sregex_iterator(); ++it)
+        checked.insert((*it)[1]);
+    const std::vector<std::string> list = variantFlags();
+    EXPECT_EQ(checked, std::set<std::string>(list.begin(), list.end()));
 }
 
 bool hasDefine(const ShaderFeatures& features, const std::string& name) {

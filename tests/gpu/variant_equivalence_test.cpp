@@ -173,7 +173,8 @@ TEST(ShaderVariant, BindingsMatchTheSpirv) {
             }
     for (const gpu::ShaderFeatures& f : variants) {
         const gpu::CompiledShader shader =
-            gpu::loadOrCompile({test::kShaderDir, "trace.comp", gpu::definesFor(f)});
+            gpu::loadOrCompile({test::kShaderDir, "trace.comp",
+                                gpu::definesFor(f, precisionDefines(Precision::Robust))});
         std::set<std::uint32_t> expected;
         for (const gpu::ShaderBinding& b : gpu::bindingsFor(f)) expected.insert(b.binding);
         EXPECT_EQ(spirvBindings(shader.spirv), expected) << gpu::describe(f);

@@ -53,11 +53,14 @@ TEST(Precision, Fp64IsRefusedNamingADeviceWithoutShaderFloat64) {
     EXPECT_NO_THROW(gpu::requirePrecisionSupported(Precision::Fp64, device));
 }
 
-TEST(Precision, NaiveAndFp64AddADefine) {
+TEST(Precision, EachModeDefinesBothFlagsZeroOrOne) {
     using D = std::vector<std::pair<std::string, std::string>>;
-    EXPECT_EQ(precisionDefines(Precision::Naive), (D{{"VKRAY_PRECISION_NAIVE", "1"}}));
-    EXPECT_EQ(precisionDefines(Precision::Fp64), (D{{"VKRAY_PRECISION_FP64", "1"}}));
-    EXPECT_TRUE(precisionDefines(Precision::Robust).empty());
+    EXPECT_EQ(precisionDefines(Precision::Naive),
+              (D{{"VKRAY_PRECISION_NAIVE", "1"}, {"VKRAY_PRECISION_FP64", "0"}}));
+    EXPECT_EQ(precisionDefines(Precision::Fp64),
+              (D{{"VKRAY_PRECISION_NAIVE", "0"}, {"VKRAY_PRECISION_FP64", "1"}}));
+    EXPECT_EQ(precisionDefines(Precision::Robust),
+              (D{{"VKRAY_PRECISION_NAIVE", "0"}, {"VKRAY_PRECISION_FP64", "0"}}));
 }
 
 TEST(Precision, Fp64RebasesLikeRobust) {
