@@ -59,8 +59,12 @@ std::vector<BenchScene> knownScenes() {
         scenes.push_back({"spheres" + count, std::to_string(n) + " spheres",
                           [n] { return bench::randomSpheres(n); }, true});
     }
-    scenes.push_back({"castle", "castle.dat (corpus)",
-                      [source] { return bench::sdlScene(source + "/../shared/sdl-corpus/castle.dat"); }});
+    // castle.dat is in the corpus of real SDL scenes, the folder VKRAY_SDL_CORPUS
+    // names (parse() leaves castle out when it is unset).
+    scenes.push_back({"castle", "castle.dat (corpus)", [] {
+                          const char* corpus = std::getenv("VKRAY_SDL_CORPUS");
+                          return bench::sdlScene(std::string(corpus ? corpus : "") + "/castle.dat");
+                      }});
     scenes.push_back({"mesh", "UV sphere, 1002528 triangles", [] { return bench::uvSphereMesh(708); }});
     scenes.push_back({"default", "scenes/default.sdl",
                       [source] { return bench::sdlScene(source + "/scenes/default.sdl"); }});
@@ -146,6 +150,12 @@ Options parse(int argc, char** argv) {
         if (name.empty()) continue;
         auto it = std::find_if(known.begin(), known.end(), [&](const auto& s) { return s.name == name; });
         if (it == known.end()) usage("unknown scene '" + name + "'");
+        const char* corpus = std::getenv("VKRAY_SDL_CORPUS");
+        if (name == "castle" && (corpus == nullptr || *corpus == '\0')) {
+            std::fprintf(stderr, "vkray_bench: castle skipped: VKRAY_SDL_CORPUS does not name the "
+                                 "corpus folder that holds castle.dat\n");
+            continue;
+        }
         o.scenes.push_back(*it);
     }
     for (const std::string& file : files)

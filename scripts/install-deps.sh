@@ -10,7 +10,7 @@ packages=(
   libglm-dev libstb-dev
   libgtest-dev
   clang libclang-rt-dev  # scripts/fuzz.sh: clang and its libFuzzer/sanitizer runtimes
-  libopenmpi-dev openmpi-bin  # rendering across MPI ranks (README "Across machines")
+  libopenmpi-dev openmpi-bin  # rendering across MPI ranks (docs/mpi.md)
 )
 
 missing=()

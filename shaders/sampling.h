@@ -1,6 +1,6 @@
 // Anti-aliasing samples, one definition for the compute shader (GLSL) and the
 // CPU reference (C++), so that both place sample k of a pixel at the very
-// same point for a given --seed (README "Sampling").
+// same point for a given --seed (docs/shading.md, "Anti-aliasing").
 //
 // ξ = sampleRandom(seed, pixel, k, dim) in [0, 1): a counter-based hash, no
 // state, so any pixel and sample can be drawn in any order on any thread.

@@ -1,4 +1,4 @@
-// Texture colour k(p) at a hit (README "Textures"): it scales the ambient
+// Texture colour k(p) at a hit (docs/shading.md, "Textures"): it scales the ambient
 // and diffuse reflection coefficients. Evaluated at the point g in the
 // generic space of the surface that was hit (for CSG, the primitive's).
 // VKRAY_TEXTURES compiles the solid textures in, VKRAY_PIXMAPS the image one.

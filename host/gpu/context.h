@@ -58,7 +58,7 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-// Test hook (README "Reliability"): VKRAY_FAULT=NAME makes the GPU side
+// Test hook (docs/reliability.md, "Test hooks"): VKRAY_FAULT=NAME makes the GPU side
 // fail as a real device can but a test cannot cause: `no-compute` (every
 // device lacks a compute queue), `device-lost` (after the first tile),
 // `out-of-device-memory` (at the first buffer allocation), `no-float64` (no

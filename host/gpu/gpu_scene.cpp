@@ -29,7 +29,7 @@ uint floatBits(float f) {
     return bits;
 }
 
-// The texture's parameters with the defaults of README "Textures" for
+// The texture's parameters with the defaults of docs/shading.md, "Textures", for
 // those the scene leaves out; an image texture's pixmap as its slot in
 // Scene::pixmaps (loadPixmaps has checked that it exists).
 vec4 packTexture(const Scene& scene, const Material& m) {

@@ -41,7 +41,7 @@ std::uint32_t gpuKindOf(ShapeType type);
 // each object is cheaper than walking nodes.
 inline constexpr std::size_t kObjectBvhThreshold = 8;
 
-// Whitted shading (SHADING_SPEC.md), each part compiled in only where a
+// Whitted shading (docs/shading.md), each part compiled in only where a
 // scene can use it; indexed like ShaderFeatures::shading.
 enum class Shading { Shadows, Reflection, Refraction, Textures, Pixmaps, Antialias };
 struct GpuShading {

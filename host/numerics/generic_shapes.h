@@ -2,7 +2,8 @@
 // the stress suite's oracle (x87 80-bit, u = 2^-64), float to replay shadow
 // feelers the way a float32 GPU would (numerics/feelers.cpp). Independent of
 // the CPU reference (host/reference) and of the shader: its own derivations
-// from the implicit equations, with the origin shifts of NUMERICS.md so that
+// from the implicit equations, with the origin shifts of docs/numerics.md
+// ("Precision modes") so that
 // even T = float stays well conditioned, and the polynomial roots found by
 // bisection on monotone intervals (Yuksel, HPG 2022) to the last bit.
 //
@@ -226,7 +227,7 @@ int signChangeRoots(const T* c, int degree, T lo, T hi, T* roots) {
 
 // ---- Torus: (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2) = 0, axis z ------------
 // Solved from where the line enters a bounding sphere, along the unit
-// direction: the quartic's coefficients are then O(1) (NUMERICS.md section 6).
+// direction: the quartic's coefficients are then O(1) (docs/numerics-background.md, "Torus").
 // Each root is polished by Newton steps on F at the point itself.
 template <typename T>
 T torusF(Vec3<T> p, T R, T r) {

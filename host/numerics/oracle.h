@@ -1,7 +1,7 @@
 // The stress suite's oracle: primary rays intersected in long double (x87
 // 80-bit, u = 2^-64 on x86-64 Linux), in each object's generic space, from
 // the same Scene the renderers get. The scene's double M^-1 and camera basis
-// are taken as exact inputs (NUMERICS.md section 9: the comparison then
+// are taken as exact inputs (docs/numerics-background.md, "Measuring error": the comparison then
 // measures the renderers' arithmetic, not the scene's decimal digits).
 //
 // Besides each pixel's hit, the oracle says how much the answer moves when

@@ -34,7 +34,7 @@ namespace {
 // M^-1 T(origin), whose translation column M^-1 (origin, 1) is computed here
 // in double; so the eye's generic coordinates reach the shader rounded once,
 // instead of being rebuilt in float from a float eye and a float translation
-// that both lost the low digits (NUMERICS.md section 5).
+// that both lost the low digits (docs/numerics-background.md, "Far from the origin").
 void rebaseObject(SceneObject& object, const glm::dvec3& origin) {
     object.objectFromWorld = object.objectFromWorld * glm::translate(glm::dmat4(1.0), origin);
     object.worldFromObject = glm::translate(glm::dmat4(1.0), -origin) * object.worldFromObject;
@@ -42,7 +42,8 @@ void rebaseObject(SceneObject& object, const glm::dvec3& origin) {
 }
 
 // The textbook's inverse: M rounded to float, then inverted in float. An
-// ill-conditioned M loses about cond(M) u here (NUMERICS.md section 5).
+// ill-conditioned M loses about cond(M) u here (docs/numerics-background.md,
+// "Far from the origin").
 void invertInFloat(SceneObject& object) {
     const glm::mat4 m(object.worldFromObject);
     object.objectFromWorld = glm::dmat4(glm::inverse(m));

@@ -1,5 +1,5 @@
 // Watertight ray/triangle intersection (Woop, Benthin, Wald, JCGT 2(1), 2013;
-// NUMERICS.md section 8) in double, and the mesh BVH walk.
+// docs/numerics-background.md, "Watertight triangles") in double, and the mesh BVH walk.
 //
 // Why watertight: Moller-Trumbore measures each triangle from its own first
 // corner, so two triangles round a shared edge differently and rays slip
@@ -32,7 +32,7 @@ constexpr double kFar = std::numeric_limits<double>::max();
 
 // a b - c d with the sign always right: the rounding error of c d is
 // recovered exactly by fma, and the result is within 2 ulps (Kahan;
-// NUMERICS.md section 2).
+// docs/numerics-background.md, "Compensated products").
 double differenceOfProducts(double a, double b, double c, double d) {
     const double cd = c * d;
     const double error = std::fma(-c, d, cd);

@@ -8,8 +8,8 @@
 // leaves it). The derivative's roots come the same way, recursively, down to
 // a quadratic solved in the stable form. Nothing here depends on a
 // discriminant's sign being computed right, which is what makes Ferrari's
-// and Descartes' closed forms fragile near double roots (NUMERICS.md
-// section 6); the price is a few dozen polynomial evaluations per root.
+// and Descartes' closed forms fragile near double roots (docs/numerics-background.md,
+// "Torus"); the price is a few dozen polynomial evaluations per root.
 #pragma once
 
 #include <span>

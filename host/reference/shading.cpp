@@ -1,4 +1,4 @@
-// Whitted shading in double (see shading.h and README "Shading").
+// Whitted shading in double (see shading.h and docs/shading.md).
 #include "reference/shading.h"
 
 #include "reference/textures.h"

@@ -1,4 +1,4 @@
-// Whitted shading for the CPU reference (Hill ch. 14, README "Shading"):
+// Whitted shading for the CPU reference (Hill ch. 14, docs/shading.md):
 // the local model with shadow feelers through transparent occluders,
 // textures, and reflected and refracted rays followed recursively down to
 // maxRecursionDepth, all in double.

@@ -1,8 +1,8 @@
 // Generic shapes of the CPU reference, derived from each implicit equation
 // F(S + c t) = 0 with S the ray origin and c its direction, both in the
 // shape's own generic space (Hill ch. 14). Everything is double; the roots
-// are taken in forms that avoid cancellation (see NUMERICS.md, sections 1
-// and 10), because this is the renderer the GPU is judged against. The
+// are taken in forms that avoid cancellation (see docs/numerics-background.md, "Sphere"
+// and "Hand-worked rays"), because this is the renderer the GPU is judged against. The
 // tapered cylinder and the torus have files of their own.
 #include "reference/shapes.h"
 

@@ -9,7 +9,7 @@
 // names the surface: slab -> cap, quadric -> wall. The caps' disks need no
 // test of their own (the quadric clips them), so side and cap use one and
 // the same inequality at the rim and no ray can slip between them
-// (NUMERICS.md section 7). Within the slab the quadric is one nappe for
+// (docs/numerics-background.md, "Tapered cylinder"). Within the slab the quadric is one nappe for
 // s >= 0 (its apex z = 1 / (1 - s) lies at or beyond z = 1, or below z = 0
 // for s > 1): a convex solid, one span. For s < 0 both nappes meet inside the
 // slab: an hourglass, two spans.
@@ -32,7 +32,7 @@ struct Interval {
 
 // Where A t^2 + 2 B t + C <= 0: up to two intervals, possibly unbounded,
 // sorted. The roots come from the stable pair q = -(B + sign(B) sqrt(B^2 - AC)),
-// t = q / A and C / q (NUMERICS.md section 1), which also covers A -> 0 (a
+// t = q / A and C / q (docs/numerics-background.md, "Sphere"), which also covers A -> 0 (a
 // ray parallel to a generator) without dividing by it.
 int insideQuadratic(double A, double B, double C, Interval out[2]) {
     if (A == 0) {  // linear: 2 B t + C <= 0

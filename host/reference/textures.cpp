@@ -1,4 +1,4 @@
-// Solid and image textures, in double, from README "Textures".
+// Solid and image textures, in double, from docs/shading.md, "Textures".
 #include "reference/textures.h"
 
 #include "image/image_io.h"

@@ -1,4 +1,4 @@
-// Texture colour k(p) for the CPU reference (README "Textures"): Hill's
+// Texture colour k(p) for the CPU reference (docs/shading.md, "Textures"): Hill's
 // `texture n` / `parameters` scale a surface's ambient and diffuse
 // coefficients by a colour found at the hit's generic coordinates.
 #pragma once

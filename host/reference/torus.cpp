@@ -1,12 +1,12 @@
 // The generic torus, F(p) = (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2) = 0,
 // axis z, R = kTorusMajorRadius, r = kTorusTubeRadius (scene.h).
 //
-// Method, and why (NUMERICS.md section 6):
+// Method, and why (docs/numerics-background.md, "Torus"):
 //  1. Shift the origin to the point of the line nearest the torus's centre
 //     and use the unit direction u there: p = o' + sigma u, t = t0 + sigma/|d|.
 //     The quartic's coefficients are then O(R^2), whatever the distance to
-//     the torus; unshifted they grow like |o|^4 and cancel (NUMERICS.md
-//     measures a double closed form at 3.5e-7 relative error at D = 1000).
+//     the torus; unshifted they grow like |o|^4 and cancel (a double closed form was
+//     measured at 3.5e-7 relative error at D = 1000; docs/numerics-background.md, "Torus").
 //     The shift matters more than the solver.
 //  2. Only sigma in the bounding sphere |p| <= R + r can be a root: search
 //     [-h, h], h^2 = (R + r)^2 - |o'|^2; a line that misses the sphere

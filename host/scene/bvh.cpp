@@ -45,7 +45,7 @@ constexpr double gammaBound(int n) {
 
 // Each slab distance (bound - o) * inv is off by at most gamma(3) relative;
 // growing the far distance by twice that keeps the test conservative
-// (pbrt-v4, Bounds3::IntersectP; NUMERICS.md section 4).
+// (pbrt-v4, Bounds3::IntersectP; docs/numerics-background.md, "Conservative bounds").
 constexpr double kFarGrowth = 2 * gammaBound(3);
 
 }  // namespace

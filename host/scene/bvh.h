@@ -29,7 +29,8 @@ struct Aabb {
 // component; +-inf for a zero component is fine: an origin exactly on such a
 // slab's boundary gives 0 * inf = NaN, which counts as inside that slab.
 // Conservative as in pbrt-v4: each slab's far distance is widened by
-// 2 gamma(3) (NUMERICS.md section 4), so a ray that touches an edge or a
+// 2 gamma(3) (docs/numerics-background.md, "Conservative bounds"), so a ray
+// that touches an edge or a
 // corner, or crosses a flat (zero-thickness) box, is a hit.
 bool intersectAabb(const Aabb& box, const glm::dvec3& origin, const glm::dvec3& invDirection,
                    double tMin, double tMax, double* tEntry = nullptr);

@@ -177,7 +177,8 @@ std::optional<Aabb> genericBounds(const SceneObject& object, const Scene& scene)
 }
 
 // pbrt's bound on the rounding of a transformed point: gamma(3) times the
-// sum of the magnitudes that went into each coordinate (NUMERICS.md section 4).
+// sum of the magnitudes that went into each coordinate
+// (docs/numerics-background.md, "Conservative bounds").
 constexpr double kGamma3 = 3 * (0.5 * std::numeric_limits<double>::epsilon()) /
                            (1 - 3 * (0.5 * std::numeric_limits<double>::epsilon()));
 

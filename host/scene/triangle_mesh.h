@@ -52,7 +52,7 @@ TriangleMesh meshFrom3vn(const PolygonMesh& polygons);
 TriangleMesh extrudeOutline(const Outline& outline);
 
 // Tetrahedron, Octahedron, Dodecahedron, Icosahedron, Buckyball, Diamond and
-// Teapot, made by the project (README gives each one's size and orientation;
+// Teapot, made by the project (docs/sdl.md gives each one's size and orientation;
 // polyhedra.cpp and teapot.cpp say how each is built).
 TriangleMesh builtInMesh(ShapeType type);
 bool isBuiltInMesh(ShapeType type);

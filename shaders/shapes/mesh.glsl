@@ -1,6 +1,6 @@
 // Triangle meshes in object space, each with its own BVH (host/scene/bvh.h).
-// Triangles use the watertight test of Woop, Benthin and Wald (NUMERICS.md
-// section 8): edge functions in a ray-aligned frame, so two triangles sharing
+// Triangles use the watertight test of Woop, Benthin and Wald (docs/numerics-background.md,
+// "Watertight triangles"): edge functions in a ray-aligned frame, so two triangles sharing
 // an edge see it with exactly opposite signs and no ray slips between them.
 layout(std430, set = 0, binding = BINDING_MESHES) readonly buffer MeshBlock { GpuMesh meshes[]; };
 layout(std430, set = 0, binding = BINDING_MESH_NODES) readonly buffer MeshNodeBlock { GpuBvhNode meshNodes[]; };

@@ -6,7 +6,7 @@
 #if VKRAY_PRECISION_NAIVE
 // Naive (textbook): A t^2 + B t + C = 0, disc = B^2 - 4AC, t = (-B -+ sqrt(disc)) / 2A.
 // B^2 and 4AC are both ~|o|^2 |d|^2: seen from |o| > ~4096 radii the
-// discriminant is rounding noise (NUMERICS.md section 1, failure A), and the
+// discriminant is rounding noise (docs/numerics-background.md, "Sphere", failure A), and the
 // root (-B + sqrt(disc)) cancels when sqrt(disc) ~ |B| (failure B).
 bool sphereSpan(rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real t1, out rvec3 n1) {
     real A = dot(d, d);

@@ -3,7 +3,8 @@
 // k = s - 1 and rho(z) = 1 + k z the solid is where the ray is inside both
 //     the slab        0 <= z <= 1,
 //     the quadric     Q = x^2 + y^2 - rho(z)^2 <= 0 (a double cone, or a cylinder),
-// and along the ray Q = A t^2 + 2 B t + C (NUMERICS.md section 7). As in the
+// and along the ray Q = A t^2 + 2 B t + C (docs/numerics-background.md,
+// "Tapered cylinder"). As in the
 // CPU reference, each inside-span is a piece of the quadric's inside clipped
 // to the slab, the binding constraint naming the surface (slab: a cap,
 // quadric: the wall); the quadric clips the caps' disks (radius 1 and |s|),
@@ -103,7 +104,8 @@ TaperedSpans taperedCylinderSpans(rvec3 origin, rvec3 d, real s) {
 #if VKRAY_PRECISION_NAIVE
     real shift = 0.0;  // naive (textbook): the quadratic in the ray's own origin
 #else
-    // Robust (origin shift, NUMERICS.md section 7): solve from the point of
+    // Robust (origin shift, docs/numerics-background.md, "Tapered cylinder"):
+    // solve from the point of
     // the line nearest the axis' middle: seen from far away, C and B^2 - AC
     // cancel; from there they are of the shape's size.
     real shift = dot(rvec3(0.0, 0.0, 0.5) - origin, d) / dot(d, d);

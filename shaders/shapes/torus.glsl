@@ -3,7 +3,7 @@
 // 4 R^2 (px^2 + py^2) = 0.
 //
 // Closed-form quartic solvers lose everything in float (their coefficients
-// grow like |o|^4; NUMERICS.md section 6). So: move the origin to where the
+// grow like |o|^4; docs/numerics-background.md, "Torus"). So: move the origin to where the
 // line enters the torus's bounding sphere and use a unit direction, which
 // makes the coefficients O(1); split [0, L] into intervals where the quartic
 // is monotone (at the roots of its derivative, found the same way one degree
@@ -90,7 +90,7 @@ int quarticRoots(real c[5], real lo, real hi, out real roots[4]) {
 #if VKRAY_PRECISION_NAIVE
 // Naive (textbook): the quartic's coefficients straight from the ray's own
 // origin and direction. They grow like |o|^4 and cancel: from 100 units away
-// about half the hits flip (NUMERICS.md section 6). Same root finder, no
+// about half the hits flip (docs/numerics-background.md, "Torus"). Same root finder, no
 // origin shift, no unit direction, no polish.
 int torusRoots(rvec3 o, rvec3 d, out real ts[4], out rvec3 normals[4]) {
     const real R = TORUS_MAJOR_RADIUS, r = TORUS_TUBE_RADIUS;

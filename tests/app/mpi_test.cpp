@@ -102,7 +102,7 @@ TEST_F(Mpi, StressAndReportHoldWhatOneRankFinds) {
 }
 
 TEST_F(Mpi, AFailingRankEndsTheRunNamingItselfAndWritesNothing) {
-    // Rank 1 alone finds no compute device (the test hook of README "Reliability").
+    // Rank 1 alone finds no compute device (the test hook of docs/reliability.md).
     const std::string scene = std::string(VKRAY_SOURCE_DIR) + "/scenes/default.sdl";
     const std::string render = binary() + " render " + scene + " -o " + path("out.png") +
                                " --size 320x240 --quiet";

@@ -23,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The bounds this project states (README, "GPU against the CPU reference"):
+// The bounds this project states (docs/gpu-vs-reference.md):
 constexpr double kMinIdAgreement = 0.999;       // object ids agree on >= 99.9 % of pixels
 constexpr double kMaxColorRmse = 0.01;          // colour RMSE over all pixels
 constexpr double kMaxAgreeingColorError = 1e-3; // colour error where the ids agree ...
@@ -35,7 +35,7 @@ constexpr double kMaxAgreeingColorError = 1e-3; // colour error where the ids ag
 // such pixels at 160x120 (block 1 and 3; 0.33 % with --spp 4, where each
 // pixel has four chances); the others at most 0.05 %. Such pixels are
 // isolated, so RMSE stays far below its bound. The largest error there is
-// printed, not bounded (0.26 on whitted.sdl); README quotes the figures.
+// printed, not bounded (0.26 on whitted.sdl); docs/gpu-vs-reference.md quotes the figures.
 constexpr double kMaxDisagreeingFraction = 0.005;  // of all the image's pixels
 
 struct Agreement {

@@ -1,5 +1,5 @@
 // The long-double oracle on rays whose answers are known in closed form
-// (NUMERICS.md section 10, stress cases 1, 7 to 15 and 18), its silhouette
+// (docs/numerics-background.md, hand-worked rays 1, 7 to 15 and 18), its silhouette
 // band, the metrics computed against it, and the float replay's RTG6 offset.
 #include "numerics/feelers.h"
 #include "numerics/oracle.h"

@@ -180,7 +180,7 @@ TEST(PrecisionGpu, ModesAgreeOnAnEasySceneAndDifferFarAway) {
 
 TEST(PrecisionGpu, Fp64KeepsASquashBetweenTwoRotationsThatFloatLoses) {
     // Every generic axis mixes the 1e8-stretched one: M^-1 rounded to float
-    // moves the disk by ~u 1e8 of its size (README "Known limits"); in double
+    // moves the disk by ~u 1e8 of its size (docs/numerics.md, "Known limits"); in double
     // it stays within ~1e-8.
     const Scene scene = parseSdl(
         "camera eye 3 4 5 look 0 0 0 up 0 1 0 fov 40\nlight 10 20 10 1 1 1\n"

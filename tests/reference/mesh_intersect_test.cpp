@@ -1,5 +1,5 @@
 // Watertight triangles and meshes: hand-worked hits and barycentrics, the
-// shared-edge and needle cases of NUMERICS.md (stress cases 16 and 17), rays
+// shared-edge and needle cases of docs/numerics-background.md (hand-worked rays 16 and 17), rays
 // exactly through edges and vertices, interpolated normals, and the mesh BVH
 // against brute force on a closed sphere of 11 880 triangles.
 #include "reference/mesh_intersect.h"

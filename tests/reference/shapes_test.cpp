@@ -121,7 +121,7 @@ TEST(Sphere, StiffFarOrigin) {
 }
 
 TEST(Sphere, StiffGrazingRayFromFarAway) {
-    // NUMERICS.md stress cases 1 and 2: a unit sphere D away, the ray passing
+    // docs/numerics-background.md, hand-worked rays 1 and 2: a unit sphere D away, the ray passing
     // 0.9995 from its centre. B^2 - AC subtracts two numbers near D^4 to get
     // ~1e-3 D^2: at D = 1e8 that is below double's resolution of D^4. The
     // expected t (in units of the non-unit direction) is from a 50-digit
@@ -223,7 +223,8 @@ TEST(Cube, NonUnitDirection) {
 }
 
 TEST(Cube, RayInAFacePlaneWithZeroDirectionComponents) {
-    // NUMERICS.md stress case 15: y = 1 is the top face's plane, c.y = c.z = 0.
+    // docs/numerics-background.md, hand-worked ray 15: y = 1 is the top face's
+    // plane, c.y = c.z = 0.
     // A naive slab test computes (1 - 1) * inf = NaN here.
     auto hit = intersectCube({{-5, 1, 0}, {1, 0, 0}}, 0);
     ASSERT_TRUE(hit);
@@ -311,7 +312,7 @@ TEST(Object, TranslatedRotatedScaledSphere) {
 }
 
 TEST(Object, NonUniformScaleUsesTheInverseTranspose) {
-    // NUMERICS.md stress case 18: scale (1e3, 1, 1e-3). The generic point
+    // docs/numerics-background.md, hand-worked ray 18: scale (1e3, 1, 1e-3). The generic point
     // (0, 1/√2, 1/√2) is the world point (0, 1/√2, 1e-3/√2) with normal
     // S^-1 (0, 1, 1)/√2 ∝ (0, 1, 1e3); M itself would give (0, 1, 1e-3).
     const SceneObject ellipsoid = makeObject(ShapeType::Sphere, scaling({1e3, 1, 1e-3}),

@@ -1,6 +1,7 @@
 // Hill's generic tapered cylinder (axis z from 0 to 1, radius 1 at z = 0 and
 // s at z = 1): hits worked out by hand on walls, caps, rims and the apex, the
-// degenerate quadratics of NUMERICS.md section 7, and a seeded property test
+// degenerate quadratics of docs/numerics-background.md, "Tapered cylinder",
+// and a seeded property test
 // that the spans are exactly where the ray is inside.
 #include "reference/shapes.h"
 

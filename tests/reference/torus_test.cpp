@@ -1,5 +1,5 @@
 // The generic torus (axis z, R = 1, r = 0.25) and its quartic solver: roots
-// on chosen rays worked out by hand (NUMERICS.md stress cases 7 to 10), and
+// on chosen rays worked out by hand (docs/numerics-background.md, hand-worked rays 7 to 10), and
 // seeded random rays from afar whose roots are certified by a sign change of
 // F evaluated in long double.
 #include "reference/quartic.h"
