@@ -76,6 +76,16 @@ VKRAY_CONST(uint, MEDIUM_STACK_SIZE, 4u);    // nested transparent objects a ray
 VKRAY_CONST(float, OFFSET_SCALE, 1.0 / 262144.0);
 VKRAY_CONST(float, OFFSET_NEAR_ORIGIN, 1.0 / 32.0);
 VKRAY_CONST(float, OFFSET_NEAR_ORIGIN_STEP, 1.0 / 65536.0);
+// ... and by at least OFFSET_GENERIC_SCALE (2^-18 = 64 u, u = 2^-24) times
+// the world size of the object's generic rounding unit along the normal (the
+// world length of one generic unit along it times the generic shape's
+// extent; genericScaleAlong in shade.glsl): a hit's generic coordinates are
+// O(1) and rounded to a few u whatever the eye's distance, which the
+// eye-sized step above does not cover once the object is over ~64 times
+// larger than that distance. Measured need (a sphere, a cylinder and a torus
+// of size 2000 to 1e5 seen from 0.05 to 0.3): 1 u, 4 u and 16 u; 64 u
+// leaves 4 times the worst (README "Numerics", "Envelope").
+VKRAY_CONST(float, OFFSET_GENERIC_SCALE, 1.0 / 262144.0);
 
 // GpuObject.shape.z: the secondary rays a hit on the surface spawns, decided
 // on the host in double (reflectivity > minReflectivity, transparency >

@@ -44,17 +44,31 @@ const float NAIVE_EPSILON = 1e-4;
 //           n by a distance that grows with |p| like the rounding error of p
 //           and of the ray re-intersecting the surface: 2^-18 of the largest
 //           coordinate, 32 to 64 of its float spacings (OFFSET_SCALE of
-//           layout.h), or a small constant near the origin;
+//           layout.h), or a small constant near the origin; and at least
+//           OFFSET_GENERIC_SCALE (2^-18 = 64 u) times genericScale, which
+//           covers the rounding of the point in the object's own generic
+//           space (see below);
 //   fp64    the same in double (2^-47 of the largest coordinate, 2^-45 near
-//           the origin).
+//           the origin, 2^-47 = 64 u of double times genericScale).
+// genericScale is the world length along n of one generic unit of the
+// surface's object times the generic shape's extent (genericScaleAlong in
+// shade.glsl): the generic point of a hit on a shape of extent ~1 is O(1),
+// rounded to a few u (the rows of M^-1 applied to p, the generic eye, the
+// re-intersection's near root), which M scales back to a few u times that
+// length in the world: measured, 1 u for a sphere, 4 u for a cylinder, 16 u
+// for the torus (its root is found from the bounding sphere); 64 u leaves 4
+// times the worst. Sized from the eye distance alone, the offset fell below
+// that once an object was over ~64 times larger than its distance from the
+// eye (a sphere of radius 2000 seen from 0.1 above: acne on 5 % of pixels).
 vec3 naiveOffsetRayOrigin(vec3 p, vec3 n) { return p + NAIVE_EPSILON * n; }
 
 #if VKRAY_PRECISION_FP64
 const double OFFSET_DOUBLE_SCALE = 1.0lf / 140737488355328.0lf;  // 2^-47 = 32 * 2^-52
 const double OFFSET_DOUBLE_NEAR_ORIGIN_STEP = 1.0lf / 35184372088832.0lf;  // 2^-45
+const double OFFSET_DOUBLE_GENERIC_SCALE = 1.0lf / 140737488355328.0lf;  // 2^-47 = 64 * 2^-53
 #endif
 
-rvec3 offsetOrigin(rvec3 p, vec3 n, vec3 side) {
+rvec3 offsetOrigin(rvec3 p, vec3 n, vec3 side, real genericScale) {
     if (dot(n, side) < 0.0) n = -n;
 #if VKRAY_PRECISION_NAIVE
     return naiveOffsetRayOrigin(p, n);
@@ -62,8 +76,10 @@ rvec3 offsetOrigin(rvec3 p, vec3 n, vec3 side) {
     real largest = max(abs(p.x), max(abs(p.y), abs(p.z)));
 #if VKRAY_PRECISION_FP64
     real step = max(OFFSET_DOUBLE_SCALE * largest, OFFSET_DOUBLE_NEAR_ORIGIN_STEP);
+    step = max(step, OFFSET_DOUBLE_GENERIC_SCALE * genericScale);
 #else
     real step = largest < OFFSET_NEAR_ORIGIN ? OFFSET_NEAR_ORIGIN_STEP : OFFSET_SCALE * largest;
+    step = max(step, OFFSET_GENERIC_SCALE * genericScale);
 #endif
     return p + step * rvec3(n);
 #endif

@@ -11,31 +11,76 @@
 // Where a hit lies: the point; n, the world unit normal pointing out of the
 // surface (a mesh's interpolated one: refraction enters or leaves by it);
 // geometric, the surface's own normal (a mesh's triangle's) turned to face
-// the ray, beside which secondary rays leave; and m, n turned to the side of
-// `geometric`, which shades.
+// the ray, beside which secondary rays leave; m, n turned to the side of
+// `geometric`, which shades; and genericScale, the world length along
+// `geometric` of the object's generic rounding (genericScaleAlong), which
+// sizes the secondary rays' offset (offsetOrigin in precision.glsl).
 struct Surface {
     rvec3 p;
     vec3 n;
     vec3 geometric;
     vec3 m;
+    real genericScale;
 };
 
-// (M^-1)^T v: a generic normal of GpuObject `index` in world space, unit
-// (computed with the ray geometry's M^-1: in double for fp64).
-vec3 toWorldNormal(uint index, rvec3 v) {
+// (M^-1)^T v: a generic normal of GpuObject `index` in world space, not
+// normalised (computed with the ray geometry's M^-1: in double for fp64).
+rvec3 toWorldNormalUnnormalised(uint index, rvec3 v) {
 #if VKRAY_PRECISION_FP64
     dvec4 rows[3] = doubleObjects[index].objectFromWorld;
 #else
     vec4 rows[3] = objects[index].objectFromWorld;
 #endif
-    return vec3(normalize(v.x * rows[0].xyz + v.y * rows[1].xyz + v.z * rows[2].xyz));
+    return v.x * rows[0].xyz + v.y * rows[1].xyz + v.z * rows[2].xyz;
+}
+
+// (M^-1)^T v, unit.
+vec3 toWorldNormal(uint index, rvec3 v) { return vec3(normalize(toWorldNormalUnnormalised(index, v))); }
+
+// The size of the generic coordinates of GpuObject `index`'s surface that
+// its distance from a point depends on, whose rounding the secondary rays'
+// offset must cover: 1 for the sphere and the cube (and the torus: 1.25,
+// within the offset's margin), max(1, |s|) for a tapered cylinder, a mesh's
+// largest bound coordinate (at most 1 for the built-in polyhedra, 1.72 for
+// the teapot; a mesh file's or an outline's coordinates are its own). 0 for
+// the plane and the square: their distance is generic z alone, O(the eye's
+// height), which the eye-sized step covers; a mirror floor scaled by 1e7
+// would otherwise have its reflected rays start 64 u x 1e7 = 38 units up.
+real genericExtent(uint index) {
+    GpuObject object = objects[index];
+    if (object.shape.x == KIND_PLANE || object.shape.x == KIND_SQUARE) return 0.0;
+#if VKRAY_SHAPE_TAPERED_CYLINDER
+    if (object.shape.x == KIND_TAPERED_CYLINDER) return max(real(1.0), abs(taperOf(index)));
+#endif
+#if VKRAY_SHAPE_MESH
+    if (object.shape.x == KIND_MESH) {
+        GpuBvhNode root = meshNodes[meshes[object.shape.y].range.x];
+        vec3 reach = max(abs(root.lo.xyz), abs(root.hi.xyz));
+        return real(max(1.0, max(reach.x, max(reach.y, reach.z))));
+    }
+#endif
+    return 1.0;
+}
+
+// The world length, along the world normal w = (M^-1)^T g of generic normal
+// g, of one generic unit: a point moved by delta along the unit world normal
+// moves by delta |w| / |g| along the unit generic normal, so a generic
+// distance e is the world distance e |g| / |w| (at most the largest singular
+// value of M's linear part; smaller across a squashed axis). Times the
+// generic extent: the world size of the generic coordinates' rounding unit
+// at the hit. 0 where w is 0 (a degenerate normal).
+real genericScaleAlong(uint index, rvec3 g, rvec3 w) {
+    real lengthW = length(w);
+    return lengthW > 0.0 ? length(g) / lengthW * genericExtent(index) : real(0.0);
 }
 
 Surface surfaceAt(Hit hit, rvec3 origin, rvec3 direction) {
     Surface s;
     s.p = origin + hit.t * direction;
     s.n = toWorldNormal(hit.surface, hit.genericNormal);
-    s.geometric = toWorldNormal(hit.surface, hit.geometricNormal);
+    rvec3 geometric = toWorldNormalUnnormalised(hit.surface, hit.geometricNormal);
+    s.geometric = vec3(normalize(geometric));
+    s.genericScale = genericScaleAlong(hit.surface, hit.geometricNormal, geometric);
     if (dot(s.geometric, vec3(direction)) > 0.0) s.geometric = -s.geometric;
     s.m = dot(s.n, s.geometric) < 0.0 ? -s.n : s.n;
     return s;
@@ -67,18 +112,29 @@ vec3 lightTerm(GpuObject object, Surface s, vec3 v, vec3 k, uint i, float throug
     return diffuse + specular;
 }
 
-// The generic coordinates of world point p on GpuObject `index`.
-vec3 genericPoint(uint index, vec3 p) {
-    GpuObject object = objects[index];
-    return vec3(dot(object.objectFromWorld[0], vec4(p, 1.0)),
-                dot(object.objectFromWorld[1], vec4(p, 1.0)),
-                dot(object.objectFromWorld[2], vec4(p, 1.0)));
+// The generic point of a hit of the ray origin + t direction: o + t d on the
+// ray's own generic form, the one the surface was intersected on, in `real`
+// (double, from GpuDoubleObject's rows, in fp64), rounded to float only once
+// O(1). Computed from the float world point instead (M^-1 p in float), fp64
+// textures were float's seen from afar: the generic eye's magnitude |M^-1 eye|
+// cancels down to the O(1) point, leaving an error of ~u |M^-1 eye| (a
+// checkered unit sphere seen from 8000 radii, cells of 0.05: 0.19 % of the
+// pixels on the wrong side of a cell border). In robust mode the ray itself is off by that much
+// (its float direction and generic eye), so o + t d is no better there than
+// M^-1 p (README "Numerics", "Envelope": the distance within which robust's
+// textures agree).
+vec3 genericHitPoint(Hit hit, rvec3 origin, rvec3 direction) {
+    rvec3 o, d;
+    toObjectSpace(hit.surface, origin, direction, o, d);
+    return vec3(o + hit.t * d);
 }
 
-// k(p) at a hit: (1, 1, 1) unless a texture variant is compiled in.
-vec3 hitTexture(Hit hit, Surface s) {
+// k(p) at a hit of the ray origin + t direction: (1, 1, 1) unless a texture
+// variant is compiled in.
+vec3 hitTexture(Hit hit, rvec3 origin, rvec3 direction) {
 #if VKRAY_TEXTURES || VKRAY_PIXMAPS
-    return textureColor(objects[hit.surface], genericPoint(hit.surface, vec3(s.p)), vec3(hit.genericNormal));
+    return textureColor(objects[hit.surface], genericHitPoint(hit, origin, direction),
+                        vec3(hit.genericNormal));
 #else
     return vec3(1.0);
 #endif
@@ -268,7 +324,7 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
             continue;
         }
         s = surfaceAt(hit, task.origin, task.direction);
-        k = hitTexture(hit, s);
+        k = hitTexture(hit, task.origin, task.direction);
         object = objects[hit.surface];
         if (firstPrimary) {
             pixels[firstPixel].normal.xyz = s.m;
@@ -280,7 +336,7 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
         color += task.weight * (object.emissive.rgb + k * object.ambient.rgb * frame.globalAmbient.rgb);
         light = 0u;
 #if VKRAY_SHADOWS
-        feelerOrigin = offsetOrigin(s.p, s.geometric, s.m);  // lit lights are on m's side
+        feelerOrigin = offsetOrigin(s.p, s.geometric, s.m, s.genericScale);  // lit lights are on m's side
 #endif
         // The secondary rays wait on the stack until the lights are done;
         // refraction goes first, so that reflection is followed first, as in
@@ -290,14 +346,14 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
         if ((object.shape.z & FOLLOW_REFRACTION) != 0u) {
             Medium medium = task.medium;
             vec3 t = refracted(vec3(task.direction), s, object.material.z, medium);
-            pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, t), t,
+            pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, t, s.genericScale), t,
                                  task.weight * object.material.y, task.level + 1u, medium));
         }
 #endif
 #if VKRAY_REFLECTION
         if ((object.shape.z & FOLLOW_REFLECTION) != 0u) {
             rvec3 r = normalize(task.direction - 2.0 * dot(task.direction, rvec3(s.m)) * rvec3(s.m));
-            pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, vec3(r)), r,
+            pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, vec3(r), s.genericScale), r,
                                  task.weight * object.material.x, task.level + 1u, task.medium));
         }
 #endif

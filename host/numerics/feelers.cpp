@@ -6,6 +6,10 @@
 #include "scene/error.h"
 #include "shaders/layout.h"
 
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -77,14 +81,35 @@ T firstCrossing(const Crossings<T>& c, T tMin, T tMax) {
 
 constexpr float kNaiveEpsilon = 1e-4f;  // shaders/precision.glsl NAIVE_EPSILON
 
-// shaders/precision.glsl offsetOrigin, per mode.
-FVec offsetOrigin(Precision precision, FVec p, FVec n) {
-    return precision == Precision::Naive ? p + kNaiveEpsilon * n : offsetRayOriginRobust(p, n);
+// shaders/shade.glsl genericScaleAlong at a hit with world unit normal n on
+// `object`: the world length along n of one generic unit, |g| / |(M^-1)^T g|
+// for the generic normal g, which is |M^T n| (g is M^T n up to its length),
+// times the generic shape's extent (shade.glsl genericExtent: 0 for a plane
+// or square, max(1, |s|) for a tapered cylinder, else 1; the replay has no
+// meshes). The shader computes it from g and the rows of M^-1, this from n
+// and M: the same up to rounding.
+template <typename T>
+T genericScaleAlong(const SceneObject& object, Vec3<T> n) {
+    const glm::dvec3 along = glm::transpose(glm::dmat3(object.worldFromObject)) *
+                             glm::dvec3(double(n.x), double(n.y), double(n.z));
+    const bool flat = object.type == ShapeType::Plane || object.type == ShapeType::Square;
+    const bool tapered = object.type == ShapeType::TaperedCylinder;
+    const double extent = flat ? 0.0 : tapered ? std::max(1.0, std::abs(object.taper)) : 1.0;
+    return T(glm::length(along) / glm::length(glm::dvec3(double(n.x), double(n.y), double(n.z))) *
+             extent);
 }
-Vec3<double> offsetOrigin(Precision, Vec3<double> p, Vec3<double> n) {
-    constexpr double kScale = 0x1p-47, kNearOriginStep = 0x1p-45;  // OFFSET_DOUBLE_*
+
+// shaders/precision.glsl offsetOrigin, per mode.
+FVec offsetOrigin(Precision precision, FVec p, FVec n, float genericScale) {
+    return precision == Precision::Naive ? p + kNaiveEpsilon * n
+                                         : offsetRayOriginRobust(p, n, genericScale);
+}
+Vec3<double> offsetOrigin(Precision, Vec3<double> p, Vec3<double> n, double genericScale) {
+    // OFFSET_DOUBLE_* of shaders/precision.glsl
+    constexpr double kScale = 0x1p-47, kNearOriginStep = 0x1p-45, kGenericScale = 0x1p-47;
     const double largest = std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
-    return p + std::max(kScale * largest, kNearOriginStep) * n;
+    const double step = std::max(std::max(kScale * largest, kNearOriginStep), kGenericScale * genericScale);
+    return p + step * n;
 }
 
 template <typename T>
@@ -151,7 +176,8 @@ FeelerStats shadowFeelerAcneIn(const Scene& scene, const CameraBasis& camera,
             traced = true;
             // Unit direction: t and the fixed epsilon are world distances.
             const T distance = length(toLight);
-            const Vec3<T> origin = offsetOrigin(precision, px.p, px.n);
+            const Vec3<T> origin =
+                offsetOrigin(precision, px.p, px.n, genericScaleAlong(*object.object, px.n));
             const T t = firstCrossing(modeCrossings(object, origin, toLight / distance),
                                       tMinOf<T>(precision), distance);
             if (t < 0) continue;
@@ -197,7 +223,8 @@ FeelerStats refractionExitErrorsIn(const Scene& scene, const CameraBasis& camera
             if (truth.at[k].t > Real(1e-6) * px.tTrue) exitTrue = truth.at[k].t;
         if (exitTrue < 0) return;  // grazing entry: no path through
         ++stats.traced;
-        const Vec3<T> origin = offsetOrigin(precision, px.p, T(-1) * px.n);
+        const Vec3<T> origin = offsetOrigin(precision, px.p, T(-1) * px.n,
+                                            genericScaleAlong(*object.object, px.n));
         const T exit = firstCrossing(modeCrossings(object, origin, dIn), tMinOf<T>(precision),
                                      std::numeric_limits<T>::infinity());
         // Failed: no exit, the entry surface met again (t well short of the
@@ -215,12 +242,12 @@ FeelerStats refractionExitErrorsIn(const Scene& scene, const CameraBasis& camera
 
 }  // namespace
 
-Vec3<float> offsetRayOriginRobust(Vec3<float> p, Vec3<float> n) {
+Vec3<float> offsetRayOriginRobust(Vec3<float> p, Vec3<float> n, float genericScale) {
     // shaders/layout.h: the shader's constants.
     const float largest = std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
     const float step = largest < gpu::OFFSET_NEAR_ORIGIN ? gpu::OFFSET_NEAR_ORIGIN_STEP
                                                          : gpu::OFFSET_SCALE * largest;
-    return p + step * n;
+    return p + std::max(step, gpu::OFFSET_GENERIC_SCALE * genericScale) * n;
 }
 
 FeelerStats shadowFeelerAcne(const Scene& scene, const CameraBasis& camera,

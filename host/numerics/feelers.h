@@ -48,8 +48,10 @@ FeelerStats refractionExitErrors(const Scene& scene, const CameraBasis& camera,
 
 // Robust mode's secondary-ray origin (shaders/precision.glsl offsetOrigin):
 // p moved along n by OFFSET_SCALE times its largest coordinate, or by
-// OFFSET_NEAR_ORIGIN_STEP near the origin. n is the geometric normal on the
-// side the new ray leaves from.
-Vec3<float> offsetRayOriginRobust(Vec3<float> p, Vec3<float> n);
+// OFFSET_NEAR_ORIGIN_STEP near the origin, and by at least
+// OFFSET_GENERIC_SCALE times genericScale (the world length along n of the
+// object's generic rounding unit: shaders/shade.glsl genericScaleAlong). n is
+// the geometric normal on the side the new ray leaves from.
+Vec3<float> offsetRayOriginRobust(Vec3<float> p, Vec3<float> n, float genericScale = 0);
 
 }  // namespace vkray::numerics
