@@ -85,7 +85,7 @@ TEST(NumericsEnvelope, MirrorFloorScaledBy1e7ReflectsFromItsSurface) {
 
 // A checkered unit sphere (cells 0.05) seen from 8000 radii. fp64 took the
 // texture point from float M^-1 p, whose O(1) result cancels out of
-// coordinates of ~8000: 0.20 % of the pixels on the wrong side of a cell
+// coordinates of ~8000: 0.19 % of the pixels on the wrong side of a cell
 // border. Now o + t d on the intersection's generic ray, in double.
 TEST(NumericsEnvelope, FarCheckeredSphereAgreesInFp64) {
     expectAgreement("far_checker_8000.sdl", Precision::Fp64);
