@@ -11,6 +11,7 @@ packages=(
   libgtest-dev
   clang libclang-rt-dev  # scripts/fuzz.sh: clang and its libFuzzer/sanitizer runtimes
   libopenmpi-dev openmpi-bin  # rendering across MPI ranks (docs/mpi.md)
+  dpkg-dev file  # cpack -G DEB: dpkg-shlibdeps finds the .deb's library dependencies
 )
 
 missing=()

@@ -1,5 +1,6 @@
 #include "app/commands.h"
 
+#include "app/data_folder.h"
 #include "app/difftest_command.h"
 #include "app/features_report.h"
 #include "app/pixel_report.h"
@@ -55,20 +56,19 @@ std::string fixed(double value, int digits) {
     return text;
 }
 
-// shaders/ next to the binary (where the build copies them), unless given.
+// --shader-dir, else shaders/ next to the binary (where the build copies
+// them), else the installed share/vkray/shaders (app/data_folder.h).
 std::string shaderDirectory(const Options& o) {
     if (!o.shaderDirectory.empty()) {
         if (!fs::exists(fs::path(o.shaderDirectory) / "trace.comp"))
             throw Error("--shader-dir " + o.shaderDirectory + ": no trace.comp there");
         return o.shaderDirectory;
     }
-    std::error_code ec;
-    fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    fs::path dir = exe.parent_path() / "shaders";
-    if (ec || !fs::exists(dir / "trace.comp"))
-        throw Error("cannot find the shaders next to the binary (" + dir.string() +
-                    "); pass --shader-dir DIR (the project's shaders/ folder)");
-    return dir.string();
+    const DataFolder shaders = findDataFolder("shaders", "shaders", "trace.comp");
+    if (shaders.path.empty())
+        throw Error("cannot find the shaders " + shaders.whereLooked() +
+                    "; pass --shader-dir DIR (the project's shaders/ folder)");
+    return shaders.path;
 }
 
 // Fails before rendering when an output could never be written.

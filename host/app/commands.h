@@ -12,8 +12,9 @@ namespace vkray {
 // Exit status: 0 success, 1 error (printed to err), 2 images beyond tolerance.
 int runCommand(const Options& options, std::ostream& out, std::ostream& err);
 
-// The GLSL folder: --shader-dir, else shaders/ next to the binary. Throws
-// Error when it has no trace.comp.
+// The GLSL folder: --shader-dir, else shaders/ next to the binary, else the
+// installed <binary dir>/../share/vkray/shaders. Throws Error when it has no
+// trace.comp.
 std::string shaderDirectoryFor(const Options& options);
 
 // Parses argv and runs; catches every exception into a message and status 1.

@@ -210,7 +210,8 @@ render options:
   --lenient             skip unknown words and unsupported shapes, with warnings
   --eye X,Y,Z --look X,Y,Z --up X,Y,Z --fov DEG   override the scene's camera
   --threads N           CPU reference threads (default: all cores)
-  --shader-dir DIR      GLSL folder (default: shaders/ next to the binary)
+  --shader-dir DIR      GLSL folder (default: shaders/ next to the binary,
+                        else ../share/vkray/shaders)
   --variant all|scene   compile every shape in, or only the scene's (default)
   --validation          enable the Khronos validation layer; any message fails
   --watch               re-render when the scene, a file it reads or a shader changes
@@ -226,7 +227,8 @@ existing files stay as they were, exit status 130.
 stress and report options:
   --out DIR             where the CSV, JSON and HTML go (default stress-report, report-SCENE)
   --cases PATTERN       stress: only the cases whose name contains PATTERN
-  --cases-dir DIR       stress: the cases' folder (default scenes/stress next to the binary)
+  --cases-dir DIR       stress: the cases' folder (default scenes/stress next to the binary,
+                        else ../share/vkray/stress)
 
 difftest options:
   --scenes N            how many scenes to draw (default 100)

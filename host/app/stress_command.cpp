@@ -1,6 +1,7 @@
 #include "app/stress_command.h"
 
 #include "app/commands.h"
+#include "app/data_folder.h"
 #include "dist/job_hand_out.h"
 #include "gpu/context.h"
 #include "numerics/report_sweep.h"
@@ -19,16 +20,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// scenes/stress next to the binary (where the build copies it, as it copies
-// shaders/), unless given; the current folder does not matter.
+// --cases-dir, else scenes/stress next to the binary (where the build copies
+// it, as it copies shaders/), else the installed share/vkray/stress
+// (app/data_folder.h); the current folder does not matter.
 std::string casesDirectory(const Options& o) {
     if (!o.casesDirectory.empty()) return o.casesDirectory;
-    std::error_code ec;
-    const fs::path beside = fs::read_symlink("/proc/self/exe", ec).parent_path() / "scenes" / "stress";
-    if (ec || !fs::is_directory(beside))
-        throw Error("stress: cannot find the stress cases next to the binary (" + beside.string() +
-                    "); pass --cases-dir DIR (the project's scenes/stress folder)");
-    return beside.string();
+    const DataFolder cases = findDataFolder("scenes/stress", "stress");
+    if (cases.path.empty())
+        throw Error("stress: cannot find the stress cases " + cases.whereLooked() +
+                    "; pass --cases-dir DIR (the project's scenes/stress folder)");
+    return cases.path;
 }
 
 std::string deviceText(const gpu::Context& context) {

@@ -265,9 +265,29 @@ TEST_F(NumericsCli, StressFindsItsCasesNextToTheBinaryFromAnyFolder) {
                                           " stress --cases tiny_sphere --size 32x24");
     EXPECT_EQ(lost.status, 1) << lost.output;
     EXPECT_NE(lost.output.find("cannot find the stress cases next to the binary (" +
-                               (bin / "scenes/stress").string() + "); pass --cases-dir DIR"),
+                               (bin / "scenes/stress").string() + ") nor in the installed place (" +
+                               (dir / "install/share/vkray/stress").string() +
+                               "); pass --cases-dir DIR"),
               std::string::npos)
         << lost.output;
+}
+
+// The installed layout of `cmake --install` and the .deb: P/bin/vkray with
+// nothing beside it, its shaders and stress cases in P/share/vkray.
+TEST_F(NumericsCli, StressFindsItsInstalledCasesAndShadersFromAnyFolder) {
+    const fs::path binary = VKRAY_BINARY, built = binary.parent_path();
+    const fs::path prefix = dir / "prefix";
+    fs::create_directories(prefix / "bin");
+    fs::create_directories(prefix / "share/vkray");
+    fs::copy_file(binary, prefix / "bin/vkray");
+    fs::copy(built / "shaders", prefix / "share/vkray/shaders", fs::copy_options::recursive);
+    fs::copy(built / "scenes/stress", prefix / "share/vkray/stress", fs::copy_options::recursive);
+    fs::create_directories(dir / "elsewhere");
+    test::RunResult run = test::runShell("cd " + path("elsewhere") + " && " + (prefix / "bin/vkray").string() +
+                                         " stress --cases tiny_sphere --size 32x24 --precision robust");
+    EXPECT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("result: 2 of 2 rows as expected (PASS)"), std::string::npos) << run.output;
+    EXPECT_TRUE(fs::exists(dir / "elsewhere/stress-report/stress.csv"));
 }
 
 TEST_F(NumericsCli, ReportWritesItsFilesAndNamesBadInput) {
