@@ -12,6 +12,7 @@
 #include "scene/error.h"
 #include "scene/scene_geometry.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <map>
@@ -50,7 +51,12 @@ Verdict judge(const std::string& path, const RandomScene& r, gpu::GpuTracer& tra
     CompareResult result = compareImages(colorImage(gpu), colorImage(cpu),
                                          {kCheckFailThreshold, kCheckFailPercent});
     compareIds(idImage(gpu), idImage(cpu), result);
-    v.agreed = result.passed && result.idMismatchPercent <= kCheckFailPercent;
+    // `render --check`'s bound, but never less than one pixel: the images
+    // are small (a few hundred pixels), and one shadow feeler or secondary
+    // ray that grazes an edge within float rounding may flip a pixel in any.
+    const double allowed = std::max(1.0, kCheckFailPercent / 100 * double(result.pixelCount));
+    v.agreed = double(result.pixelsOverThreshold) <= allowed &&
+               double(result.idMismatches.value_or(0)) <= allowed;
     char text[160];
     std::snprintf(text, sizeof text, "%.3g %% of pixels over %.2g (largest %.3g), %.3g %% of ids differ",
                   result.percentOverThreshold, kCheckFailThreshold, result.maxAbsError,

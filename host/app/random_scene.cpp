@@ -76,7 +76,7 @@ public:
         if (textured) {
             // Checkerboard (1) or wood (2): size or ring width, then the odd colour.
             m += " texture " + std::string(d_.chance(.5) ? "1" : "2") + " parameters 4 " +
-                 num(d_.logRange(.05, 2)) + " " + triple(d_.unit(), d_.unit(), d_.unit());
+                 num(d_.logRange(.25, 2)) + " " + triple(d_.unit(), d_.unit(), d_.unit());
         } else {
             m += " texture 0";
         }
@@ -127,14 +127,18 @@ private:
 }  // namespace
 
 SceneEnvelope envelopeOf(Precision precision) {
-    // Measured with `vkray difftest` (docs/testing.md): beyond these, robust
-    // float rounding shows (docs/numerics.md, "Envelope").
+    // Inside README "Numerics", "Envelope": robust places a hit to about
+    // u |M^-1 eye| of the object's size, so silhouettes hold while the eye's
+    // generic coordinates stay below ~6e4 and texture cells while they stay
+    // below ~2e4 cells. An eye up to 10 x farthestEye object sizes away, a
+    // squash r and cells of at least 0.25 give |M^-1 eye| / cell <= 1.6e4
+    // for robust; fp64 holds to 1e6 and squashes of 1e-10.
     switch (precision) {
-    case Precision::Naive: return {30, 0.05};
-    case Precision::Robust: return {300, 1e-3};
+    case Precision::Naive: return {20, 0.05};
+    case Precision::Robust: return {20, 0.05};
     case Precision::Fp64: return {3000, 1e-4};
     }
-    return {30, 0.05};
+    return {20, 0.05};
 }
 
 RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
@@ -156,7 +160,7 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
     // Objects around the origin in a box of `extent`; a plane now and then.
     const double extent = d.logRange(1, 20);
     const int objects = d.chance(.3) ? 9 + d.below(16) : 1 + d.below(8);  // > 8: an object BVH
-    std::vector<std::array<double, 3>> centres;  // of the objects that are not squashed
+    std::vector<std::array<double, 3>> centres;  // of centred solids that are not squashed
     for (int i = 0; i < objects; ++i) {
         const std::array<double, 3> at{d.range(-extent, extent), d.range(-extent, extent),
                                        d.range(-extent, extent)};
@@ -178,8 +182,17 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
                    solids[d.below(6)] + " pop\npop\n";
         } else {
             bool squashed = false;
-            sdl += "push " + w.placement(at, size, &squashed) + " " + w.primitive(true) + " pop\n";
-            if (!squashed) centres.push_back(at);
+            const std::string shape = w.primitive(true);
+            sdl += "push " + w.placement(at, size, &squashed) + " " + shape + " pop\n";
+            // A view from inside needs a point well inside (or, for the
+            // torus, in the hole): the generic origin of the centred solids.
+            // (That of a cylinder, cone, square or the pyramid lies on its
+            // surface: an eye there sees hits at t = 0.)
+            const bool centred = shape == "sphere" || shape == "cube" || shape == "torus" ||
+                                 shape == "tetrahedron" || shape == "octahedron" ||
+                                 shape == "dodecahedron" || shape == "icosahedron" ||
+                                 shape == "buckyball";
+            if (!squashed && centred) centres.push_back(at);
         }
     }
 
@@ -205,7 +218,7 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
     } else {
         // Inside (or at the heart of) an object; not a squashed one, whose
         // walls may lie closer to the eye than robust's offset can tell apart
-        // (docs/numerics.md, "Envelope").
+        // (README "Numerics", "Envelope").
         eye = centres[size_t(d.below(int(centres.size())))];
         look = {eye[0] + d.range(-1, 1), eye[1] + d.range(-1, 1), eye[2] + d.range(-1, 1)};
     }
