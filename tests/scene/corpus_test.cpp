@@ -18,6 +18,7 @@
 #include "scene/sdl_reader.h"
 #include "support/corpus.h"
 #include "support/error_of.h"
+#include "support/scene_checks.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -38,20 +39,9 @@ Scene load(const char* name, bool lenient, std::vector<std::string>* warnings = 
     return loadSdlFile(corpus(name), options, warnings);
 }
 
-long countOf(const Scene& scene, ShapeType type) {
-    return std::count_if(scene.objects.begin(), scene.objects.end(),
-                         [type](const SceneObject& o) { return o.type == type; });
-}
-
-glm::dvec3 worldPoint(const SceneObject& object, const glm::dvec3& p) {
-    return glm::dvec3(object.worldFromObject * glm::dvec4(p, 1.0));
-}
-
-void expectNear(const glm::dvec3& actual, const glm::dvec3& expected) {
-    EXPECT_NEAR(actual.x, expected.x, 1e-12);
-    EXPECT_NEAR(actual.y, expected.y, 1e-12);
-    EXPECT_NEAR(actual.z, expected.z, 1e-12);
-}
+using test::countOf;
+using test::expectNear;
+using test::worldPoint;
 
 bool samePath(const std::string& a, const std::string& b) {
     return fs::path(a).lexically_normal() == fs::path(b).lexically_normal();

@@ -18,6 +18,7 @@
 #include "scene/error.h"
 #include "support/corpus.h"
 #include "support/error_of.h"
+#include "support/scene_checks.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -28,7 +29,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kData = VKRAY_SOURCE_DIR "/tests/data/";
+const std::string& kData = test::kTestData;
 
 std::string corpus(const std::string& name) {
     return test::corpusFile(name);

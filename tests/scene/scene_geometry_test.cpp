@@ -16,6 +16,7 @@
 #include "scene/triangle_mesh.h"
 #include "support/corpus.h"
 #include "support/error_of.h"
+#include "support/scene_checks.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -24,8 +25,7 @@
 namespace vkray {
 namespace {
 
-// The repository's own scenes and meshes (wedge.3vn, pyramid.3vn, ...).
-const std::string kData = VKRAY_SOURCE_DIR "/tests/data/";
+const std::string& kData = test::kTestData;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string corpus(const std::string& name) {

@@ -34,6 +34,7 @@
 #include "scene/sdl_reader.h"
 #include "scene/triangle_mesh.h"
 #include "support/error_of.h"
+#include "support/scene_checks.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -42,7 +43,7 @@
 namespace vkray {
 namespace {
 
-const std::string kData = VKRAY_SOURCE_DIR "/tests/data/";
+const std::string& kData = test::kTestData;
 
 std::string bytesOf(const std::string& name) {
     std::ifstream in(kData + name, std::ios::binary);
@@ -54,20 +55,9 @@ Scene parse(const char* name, bool lenient, std::vector<std::string>* warnings =
     return loadSdlFile(kData + name, SdlOptions{.lenient = lenient}, warnings);
 }
 
-long countOf(const Scene& scene, ShapeType type) {
-    return std::count_if(scene.objects.begin(), scene.objects.end(),
-                         [type](const SceneObject& o) { return o.type == type; });
-}
-
-glm::dvec3 worldPoint(const SceneObject& object, const glm::dvec3& p) {
-    return glm::dvec3(object.worldFromObject * glm::dvec4(p, 1.0));
-}
-
-void expectNear(const glm::dvec3& actual, const glm::dvec3& expected) {
-    EXPECT_NEAR(actual.x, expected.x, 1e-12);
-    EXPECT_NEAR(actual.y, expected.y, 1e-12);
-    EXPECT_NEAR(actual.z, expected.z, 1e-12);
-}
+using test::countOf;
+using test::expectNear;
+using test::worldPoint;
 
 void expectBox(const Aabb& box, glm::dvec3 lo, glm::dvec3 hi) {
     for (int axis = 0; axis < 3; ++axis) {
