@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The numerics envelope (README "Numerics", "Envelope"): sweeps of distance,
+# The numerics envelope (docs/numerics.md, "Envelope"): sweeps of distance,
 # scale and squash, each scene rendered as `vkray render SCENE --size
 # 160x120 --check --precision MODE` does, one line per render: the share of
 # pixels whose colour is off by more than 0.02, the share of object ids that

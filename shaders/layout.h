@@ -72,7 +72,7 @@ VKRAY_CONST(uint, MEDIUM_STACK_SIZE, 4u);    // nested transparent objects a ray
 // the eye's frame, where a hit point and the re-intersection of a ray leaving
 // it are off by a few spacings of the largest coordinate in any direction:
 // 2^-18 of it (32 to 64 of its spacings) along the normal, whatever its
-// direction (README "Numerics").
+// direction (docs/numerics.md).
 VKRAY_CONST(float, OFFSET_SCALE, 1.0 / 262144.0);
 VKRAY_CONST(float, OFFSET_NEAR_ORIGIN, 1.0 / 32.0);
 VKRAY_CONST(float, OFFSET_NEAR_ORIGIN_STEP, 1.0 / 65536.0);
@@ -84,7 +84,7 @@ VKRAY_CONST(float, OFFSET_NEAR_ORIGIN_STEP, 1.0 / 65536.0);
 // eye-sized step above does not cover once the object is over ~64 times
 // larger than that distance. Measured need (a sphere, a cylinder and a torus
 // of size 2000 to 1e5 seen from 0.05 to 0.3): 1 u, 4 u and 16 u; 64 u
-// leaves 4 times the worst (README "Numerics", "Envelope").
+// leaves 4 times the worst (docs/numerics.md, "Envelope").
 VKRAY_CONST(float, OFFSET_GENERIC_SCALE, 1.0 / 262144.0);
 
 // GpuObject.shape.z: the secondary rays a hit on the surface spawns, decided

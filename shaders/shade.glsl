@@ -121,7 +121,7 @@ vec3 lightTerm(GpuObject object, Surface s, vec3 v, vec3 k, uint i, float throug
 // checkered unit sphere seen from 8000 radii, cells of 0.05: 0.19 % of the
 // pixels on the wrong side of a cell border). In robust mode the ray itself is off by that much
 // (its float direction and generic eye), so o + t d is no better there than
-// M^-1 p (README "Numerics", "Envelope": the distance within which robust's
+// M^-1 p (docs/numerics.md, "Envelope": the distance within which robust's
 // textures agree).
 vec3 genericHitPoint(Hit hit, rvec3 origin, rvec3 direction) {
     rvec3 o, d;

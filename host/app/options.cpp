@@ -218,7 +218,7 @@ render options:
   -D NAME=VALUE         define for the shader compile (repeatable)
   --dump-spirv DIR      write the SPIR-V of the variant used to DIR
   --quiet               no progress display on stderr
-  --precision MODE      naive, robust (default) or fp64: float care on the GPU (README "Numerics");
+  --precision MODE      naive, robust (default) or fp64: float care on the GPU (docs/numerics.md);
                         for stress and report: only that mode (default: all)
 
 Ctrl-C (SIGINT, SIGTERM) stops a render between tiles: nothing is written,

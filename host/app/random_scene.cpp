@@ -127,7 +127,7 @@ private:
 }  // namespace
 
 SceneEnvelope envelopeOf(Precision precision) {
-    // Inside README "Numerics", "Envelope": robust places a hit to about
+    // Inside docs/numerics.md, "Envelope": robust places a hit to about
     // u |M^-1 eye| of the object's size, so silhouettes hold while the eye's
     // generic coordinates stay below ~6e4 and texture cells while they stay
     // below ~2e4 cells. An eye up to 10 x farthestEye object sizes away, a
@@ -218,7 +218,7 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
     } else {
         // Inside (or at the heart of) an object; not a squashed one, whose
         // walls may lie closer to the eye than robust's offset can tell apart
-        // (README "Numerics", "Envelope").
+        // (docs/numerics.md, "Envelope").
         eye = centres[size_t(d.below(int(centres.size())))];
         look = {eye[0] + d.range(-1, 1), eye[1] + d.range(-1, 1), eye[2] + d.range(-1, 1)};
     }

@@ -4,7 +4,7 @@
 // transforms, cameras far away, grazing and inside objects, one to several
 // lights, every material word, and the render settings (spp, block,
 // precision). What is drawn stays inside the envelope in which the GPU is
-// documented to agree with the CPU reference (README "Numerics", "Envelope").
+// documented to agree with the CPU reference (docs/numerics.md, "Envelope").
 #pragma once
 
 #include "numerics/precision.h"

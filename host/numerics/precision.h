@@ -5,7 +5,7 @@
 //   naive   the textbook: the plain quadratic formula, unshifted polynomials,
 //           slabs without guards, a fixed epsilon (tMin) on every ray, M^-1
 //           inverted in float from float M, world coordinates as written.
-//   robust  (default) the remedies named in README "Numerics": Ray Tracing
+//   robust  (default) the remedies named in docs/numerics.md: Ray Tracing
 //           Gems ch. 7 sphere, shifted cylinder and torus solvers, guarded
 //           slabs, M^-1 composed in double from exact inverses, and the world
 //           rebased on the eye in double (camera-relative coordinates).

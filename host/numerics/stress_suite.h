@@ -1,7 +1,7 @@
 // The stress suite (issue #6): every scene of scenes/stress/ rendered in each
 // precision mode and compared pixel by pixel with the long-double oracle.
 //
-// Metrics, per case and mode (README "Numerics" says how to read them):
+// Metrics, per case and mode (docs/numerics.md says how to read them):
 //   silhouette   pixels whose oracle id changes within the mode's rounding
 //                band (oracle.h); left out of every other metric
 //   flips        other pixels where the mode and the oracle disagree on hit

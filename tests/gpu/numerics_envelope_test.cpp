@@ -1,4 +1,4 @@
-// The numerics envelope (README "Numerics", "Envelope"): scenes at the edges
+// The numerics envelope (docs/numerics.md, "Envelope"): scenes at the edges
 // of what each precision mode draws as the CPU reference does, each pinned
 // with the bound `render --check` asks (colour within 0.02 on all but 0.1 %
 // of the pixels, object ids on 99.9 %), most with ids equal everywhere. The

@@ -1,4 +1,4 @@
-// Every case of scenes/stress/ at a reduced size (80x60; README "Numerics"
+// Every case of scenes/stress/ at a reduced size (80x60; docs/numerics.md
 // has the full-size figures): robust mode, fp64 and the double CPU reference
 // meet the stated bounds (stress_suite.h: no flips outside the silhouette
 // band, no wrong ids, no acne, t and normal errors within 1e-5 in float;
