@@ -378,6 +378,8 @@ void runExperiments(const Options& o, gpu::Context& context) {
         {"serpentine tile order", with([](auto& p) { p.serpentineTiles = true; })},
         {"sphere early-out (behind the ray)",
          with([](auto& p) { p.userDefines = {{"VKRAY_SPHERE_EARLY_OUT", "1"}}; })},
+        {"8 lanes in a row (not 4x2)",
+         with([](auto& p) { p.userDefines = {{"VKRAY_ROW_LANES", "1"}}; })},
     };
     std::printf("\nTuning (specialised variant, %dx%d, best of %d interleaved runs), Mrays per "
                 "CPU-second and its ratio to the shipped configuration:\n\n",

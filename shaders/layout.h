@@ -36,25 +36,40 @@ VKRAY_CONST(float, TORUS_TUBE_RADIUS, 0.25);
 VKRAY_CONST(uint, WORKGROUP_X, 8u);
 VKRAY_CONST(uint, WORKGROUP_Y, 8u);
 
-// Descriptor bindings of trace.comp (set 0).
+// Descriptor bindings of trace.comp (set 0). The scene's read-only arrays
+// are storage texel buffers (rgba32ui: one uvec4 a texel; r32ui for the
+// uint arrays) that the shader reads through shaders/scene_data.glsl: on
+// llvmpipe an imageLoad is a few vector loads, where a storage-buffer read
+// inside a loop is a scalar loop over the lanes (docs/lavapipe.md). What a
+// ray writes stays in storage buffers.
 VKRAY_CONST(uint, BINDING_FRAME, 0u);    // uniform FrameParams
-VKRAY_CONST(uint, BINDING_OBJECTS, 1u);  // readonly buffer GpuObject[]
-VKRAY_CONST(uint, BINDING_LIGHTS, 2u);   // readonly buffer GpuLight[]
-VKRAY_CONST(uint, BINDING_PIXELS, 3u);   // writeonly buffer GpuPixel[] (one tile)
-VKRAY_CONST(uint, BINDING_DEBUG, 4u);    // debug-pixel variant only: GpuDebugHeader + entries
-VKRAY_CONST(uint, BINDING_OBJECT_NODES, 5u);  // object-BVH variant: GpuBvhNode[] over objects
-VKRAY_CONST(uint, BINDING_OBJECT_INDEX, 6u);  // object-BVH variant: uint[] leaf object indices
-VKRAY_CONST(uint, BINDING_MESHES, 7u);        // mesh variant: GpuMesh[]
-VKRAY_CONST(uint, BINDING_MESH_NODES, 8u);    // mesh variant: GpuBvhNode[] of all meshes
-VKRAY_CONST(uint, BINDING_TRIANGLES, 9u);     // mesh variant: GpuTriangle[] in BVH leaf order
-VKRAY_CONST(uint, BINDING_CSG_NODES, 10u);    // CSG variant: GpuCsgNode[]
-VKRAY_CONST(uint, BINDING_PIXMAPS, 11u);      // pixmap variant: GpuPixmap[] (slot order)
-VKRAY_CONST(uint, BINDING_TEXELS, 12u);       // pixmap variant: float[] rgb texels of all pixmaps
-VKRAY_CONST(uint, BINDING_DOUBLE_CAMERA, 13u);   // fp64 variant: GpuDoubleCamera
-VKRAY_CONST(uint, BINDING_DOUBLE_OBJECTS, 14u);  // fp64 variant: GpuDoubleObject[], like GpuObject[]
-VKRAY_CONST(uint, BINDING_PROGRESS, 15u);  // GpuRayProgress[]: each ray's state between dispatches
-VKRAY_CONST(uint, BINDING_STATUS, 16u);    // GpuDispatchStatus: what one dispatch left undone
-VKRAY_CONST(uint, BINDING_RAY_STACK, 17u); // reflection/refraction variants: GpuRayTask[] (or double)
+VKRAY_CONST(uint, BINDING_OBJECTS, 1u);  // texels: GpuObjectGeometry[] (what a walk reads)
+VKRAY_CONST(uint, BINDING_LIGHTS, 2u);   // texels: GpuLight[]
+VKRAY_CONST(uint, BINDING_PIXELS, 3u);   // buffer GpuPixel[] (one tile)
+VKRAY_CONST(uint, BINDING_DEBUG, 4u);    // debug-pixel variant only: buffer GpuDebugHeader + entries
+VKRAY_CONST(uint, BINDING_OBJECT_NODES, 5u);  // object-BVH variant: texels: GpuBvhNode[] over objects
+VKRAY_CONST(uint, BINDING_OBJECT_INDEX, 6u);  // object-BVH variant: r32ui texels: leaf object indices
+VKRAY_CONST(uint, BINDING_MESHES, 7u);        // mesh variant: texels: GpuMesh[]
+VKRAY_CONST(uint, BINDING_MESH_NODES, 8u);    // mesh variant: texels: GpuBvhNode[] of all meshes
+VKRAY_CONST(uint, BINDING_TRIANGLES, 9u);     // mesh variant: texels: GpuTriangle[] in BVH leaf order
+VKRAY_CONST(uint, BINDING_CSG_NODES, 10u);    // CSG variant: texels: GpuCsgNode[]
+VKRAY_CONST(uint, BINDING_PIXMAPS, 11u);      // pixmap variant: texels: GpuPixmap[] (slot order)
+VKRAY_CONST(uint, BINDING_TEXELS, 12u);       // pixmap variant: r32ui texels: float rgb of all pixmaps
+VKRAY_CONST(uint, BINDING_DOUBLE_CAMERA, 13u);   // fp64 variant: buffer GpuDoubleCamera
+VKRAY_CONST(uint, BINDING_DOUBLE_OBJECTS, 14u);  // fp64 variant: texels: GpuDoubleObject[]
+VKRAY_CONST(uint, BINDING_PROGRESS, 15u);  // buffer GpuRayProgress[]: each ray's state between dispatches
+VKRAY_CONST(uint, BINDING_STATUS, 16u);    // buffer GpuDispatchStatus: what one dispatch left undone
+VKRAY_CONST(uint, BINDING_RAY_STACK, 17u); // reflection/refraction variants: buffer GpuRayTask[] (or double)
+VKRAY_CONST(uint, BINDING_MATERIALS, 18u); // texels: GpuMaterial[] (read once a hit)
+
+// The texels (uvec4) of each structure read through a texel buffer
+// (host/gpu/layout_check.cpp checks each against its size).
+VKRAY_CONST(uint, OBJECT_GEOMETRY_TEXELS, 4u);
+VKRAY_CONST(uint, MATERIAL_TEXELS, 6u);
+VKRAY_CONST(uint, LIGHT_TEXELS, 2u);
+VKRAY_CONST(uint, BVH_NODE_TEXELS, 2u);
+VKRAY_CONST(uint, TRIANGLE_TEXELS, 6u);
+VKRAY_CONST(uint, DOUBLE_OBJECT_TEXELS, 8u);  // a dvec4 is two texels
 
 // Bounds of the shader's fixed-size stacks; the host refuses scenes beyond them.
 VKRAY_CONST(uint, BVH_STACK_SIZE, 48u);  // BVH depth (kMaxBvhDepth on the host)
@@ -87,43 +102,54 @@ VKRAY_CONST(float, OFFSET_NEAR_ORIGIN_STEP, 1.0 / 65536.0);
 // leaves 4 times the worst (docs/numerics.md, "Envelope").
 VKRAY_CONST(float, OFFSET_GENERIC_SCALE, 1.0 / 262144.0);
 
-// GpuObject.shape.z: the secondary rays a hit on the surface spawns, decided
+// GpuObjectGeometry.shape.z: the secondary rays a hit on the surface spawns, decided
 // on the host in double (reflectivity > minReflectivity, transparency >
 // minTransparency) so that GPU and CPU never disagree on a borderline value.
 VKRAY_CONST(uint, FOLLOW_REFLECTION, 1u);
 VKRAY_CONST(uint, FOLLOW_REFRACTION, 2u);
 
-// Texture codes (`texture n`; SHADING_SPEC.md / README "Textures").
+// Texture codes (`texture n`; docs/shading.md, "Textures").
 VKRAY_CONST(uint, TEXTURE_NONE, 0u);
 VKRAY_CONST(uint, TEXTURE_CHECKERBOARD, 1u);  // parameters: size, r g b
 VKRAY_CONST(uint, TEXTURE_WOOD, 2u);          // parameters: ring width, r g b
 VKRAY_CONST(uint, TEXTURE_IMAGE, 3u);         // parameters: pixmap index
 
-// One object placed in the world. The host computes objectFromWorld = M^-1 in
-// double; the shader only applies it.
-struct GpuObject {
+// One object placed in the world, as a scene walk reads it. The host
+// computes objectFromWorld = M^-1 in double; the shader only applies it.
+struct GpuObjectGeometry {
     vec4 objectFromWorld[3];  // rows of the affine M^-1: p_obj.i = dot(row_i, vec4(p, 1))
-    vec4 ambient;             // rgb; w unused
-    vec4 diffuse;             // rgb; w unused
-    vec4 specular;            // rgb; w = specularExponent
-    vec4 emissive;            // rgb; w unused
     uvec4 shape;              // x = KIND_*; y = taper (float bits), mesh or CSG root;
-                              // z = FOLLOW_* flags; w reserved
-    vec4 material;            // x = reflectivity, y = transparency, z = speedOfLight,
-                              // w = TEXTURE_* (uint bits)
-    vec4 texture;             // the texture's parameters, defaults filled in:
-                              // checkerboard: x = cell size, yzw = odd cells' rgb;
-                              // wood: x = ring width, yzw = odd rings' rgb;
-                              // image: x = GpuPixmap slot (uint bits)
+                              // z = FOLLOW_* flags; w = transparency (float bits: shadow feelers)
 };
 
-// A BVH node (host/scene/bvh.h, flattened): an interior node's first child is
-// the next node, its second child node `first`; a leaf (count > 0) covers
-// entries first .. first + count - 1 (object indices or triangles).
+// The object's material, read once a hit (GpuObjectGeometry's index).
+struct GpuMaterial {
+    vec4 ambient;   // rgb; w unused
+    vec4 diffuse;   // rgb; w unused
+    vec4 specular;  // rgb; w = specularExponent
+    vec4 emissive;  // rgb; w unused
+    vec4 material;  // x = reflectivity, y = transparency, z = speedOfLight,
+                    // w = TEXTURE_* (uint bits)
+    vec4 texture;   // the texture's parameters, defaults filled in:
+                    // checkerboard: x = cell size, yzw = odd cells' rgb;
+                    // wood: x = ring width, yzw = odd rings' rgb;
+                    // image: x = GpuPixmap slot (uint bits)
+};
+
+// A BVH node (host/scene/bvh.h) as the shader walks it: the root first,
+// then the two children of each interior node side by side (breadth first),
+// so that a walk reads both children's boxes where it stands, and learns
+// from them whether each is a leaf, without a turn of its own for a child.
+// An interior node's children are nodes `first` and `first + 1`; a leaf
+// (count > 0) covers entries first .. first + count - 1 (object indices or
+// triangles). A walk's stack keeps a node as first * 8 + count
+// (bvhNodeCode in shapes/span.glsl), hence the bounds below.
 struct GpuBvhNode {
     vec4 lo;  // xyz; w = first (uint bits)
     vec4 hi;  // xyz; w = count (uint bits; 0 = interior)
 };
+VKRAY_CONST(uint, BVH_LEAF_MAX, 7u);           // entries a leaf may hold (maxLeafSize is 4)
+VKRAY_CONST(uint, BVH_FIRST_MAX, 536870911u);  // 2^29 - 1
 
 // One mesh in its object space: its BVH nodes and triangles (node indices
 // and leaf ranges are relative to firstNode and firstTriangle).
@@ -137,7 +163,7 @@ struct GpuTriangle {
 };
 
 // CSG trees in post order: a leaf pushes its primitive's inside-spans, an
-// operator combines the two lists on top. Primitives are GpuObjects stored
+// operator combines the two lists on top. Primitives are objects stored
 // after the scene's objects (index >= object count).
 VKRAY_CONST(uint, CSG_LEAF, 0u);
 VKRAY_CONST(uint, CSG_UNION, 1u);
@@ -177,7 +203,7 @@ struct FrameParams {
 
 // The fp64 variant (--precision fp64) reads the ray geometry's inputs in
 // double from these instead of their float copies in FrameParams and
-// GpuObject; the other variants neither bind nor declare them.
+// GpuObjectGeometry; the other variants neither bind nor declare them.
 #if defined(__cplusplus) || (defined(VKRAY_PRECISION_FP64) && VKRAY_PRECISION_FP64)
 struct GpuDoubleCamera {
     dvec4 eye;      // as FrameParams.eye (w = tan(verticalFov / 2))
@@ -187,8 +213,8 @@ struct GpuDoubleCamera {
 };
 
 struct GpuDoubleObject {
-    dvec4 objectFromWorld[3];  // GpuObject.objectFromWorld, unrounded
-    dvec4 parameters;          // x = a tapered cylinder's s (GpuObject.shape.y); yzw unused
+    dvec4 objectFromWorld[3];  // GpuObjectGeometry.objectFromWorld, unrounded
+    dvec4 parameters;          // x = a tapered cylinder's s (GpuObjectGeometry.shape.y); yzw unused
 };
 
 // GpuRayTask with its origin and direction in double.

@@ -23,13 +23,13 @@ struct Surface {
     real genericScale;
 };
 
-// (M^-1)^T v: a generic normal of GpuObject `index` in world space, not
+// (M^-1)^T v: a generic normal of object `index` in world space, not
 // normalised (computed with the ray geometry's M^-1: in double for fp64).
 rvec3 toWorldNormalUnnormalised(uint index, rvec3 v) {
 #if VKRAY_PRECISION_FP64
-    dvec4 rows[3] = doubleObjects[index].objectFromWorld;
+    dvec4 rows[3] = dvec4[3](doubleObjectRow(index, 0u), doubleObjectRow(index, 1u), doubleObjectRow(index, 2u));
 #else
-    vec4 rows[3] = objects[index].objectFromWorld;
+    vec4 rows[3] = vec4[3](objectRow(index, 0u), objectRow(index, 1u), objectRow(index, 2u));
 #endif
     return v.x * rows[0].xyz + v.y * rows[1].xyz + v.z * rows[2].xyz;
 }
@@ -37,7 +37,7 @@ rvec3 toWorldNormalUnnormalised(uint index, rvec3 v) {
 // (M^-1)^T v, unit.
 vec3 toWorldNormal(uint index, rvec3 v) { return vec3(normalize(toWorldNormalUnnormalised(index, v))); }
 
-// The size of the generic coordinates of GpuObject `index`'s surface that
+// The size of the generic coordinates of object `index`'s surface that
 // its distance from a point depends on, whose rounding the secondary rays'
 // offset must cover: 1 for the sphere and the cube (and the torus: 1.25,
 // within the offset's margin), max(1, |s|) for a tapered cylinder, a mesh's
@@ -47,14 +47,14 @@ vec3 toWorldNormal(uint index, rvec3 v) { return vec3(normalize(toWorldNormalUnn
 // height), which the eye-sized step covers; a mirror floor scaled by 1e7
 // would otherwise have its reflected rays start 64 u x 1e7 = 38 units up.
 real genericExtent(uint index) {
-    GpuObject object = objects[index];
-    if (object.shape.x == KIND_PLANE || object.shape.x == KIND_SQUARE) return 0.0;
+    uvec4 shape = objectShape(index);
+    if (shape.x == KIND_PLANE || shape.x == KIND_SQUARE) return 0.0;
 #if VKRAY_SHAPE_TAPERED_CYLINDER
-    if (object.shape.x == KIND_TAPERED_CYLINDER) return max(real(1.0), abs(taperOf(index)));
+    if (shape.x == KIND_TAPERED_CYLINDER) return max(real(1.0), abs(taperOf(index)));
 #endif
 #if VKRAY_SHAPE_MESH
-    if (object.shape.x == KIND_MESH) {
-        GpuBvhNode root = meshNodes[meshes[object.shape.y].range.x];
+    if (shape.x == KIND_MESH) {
+        GpuBvhNode root = meshNode(meshOf(shape.y).range.x);
         vec3 reach = max(abs(root.lo.xyz), abs(root.hi.xyz));
         return real(max(1.0, max(reach.x, max(reach.y, reach.z))));
     }
@@ -94,9 +94,11 @@ Surface surfaceAt(Hit hit, rvec3 origin, rvec3 direction) {
 // behind the surface (m.s <= 0) is shadowed by the surface itself (a = 0).
 // `record`: write the terms into the debug record (the primary hit of
 // `vkray pixel`).
-vec3 lightTerm(GpuObject object, Surface s, vec3 v, vec3 k, uint i, float through, bool record) {
-    vec3 lightColor = lights[i].color.rgb;
-    vec3 toLight = normalize(lights[i].position.xyz - vec3(s.p));
+#if VKRAY_LIGHTS
+vec3 lightTerm(GpuMaterial object, Surface s, vec3 v, vec3 k, uint i, float through, bool record) {
+    GpuLight light = lightOf(i);
+    vec3 lightColor = light.color.rgb;
+    vec3 toLight = normalize(light.position.xyz - vec3(s.p));
     float mDotS = dot(s.m, toLight);
     float mDotH = dot(s.m, normalize(v + toLight));
     vec3 diffuse = vec3(0.0), specular = vec3(0.0);
@@ -111,7 +113,7 @@ vec3 lightTerm(GpuObject object, Surface s, vec3 v, vec3 k, uint i, float throug
 #endif
     return diffuse + specular;
 }
-
+#endif
 // The generic point of a hit of the ray origin + t direction: o + t d on the
 // ray's own generic form, the one the surface was intersected on, in `real`
 // (double, from GpuDoubleObject's rows, in fp64), rounded to float only once
@@ -133,7 +135,8 @@ vec3 genericHitPoint(Hit hit, rvec3 origin, rvec3 direction) {
 // variant is compiled in.
 vec3 hitTexture(Hit hit, rvec3 origin, rvec3 direction) {
 #if VKRAY_TEXTURES || VKRAY_PIXMAPS
-    return textureColor(objects[hit.surface], genericHitPoint(hit, origin, direction),
+    return textureColor(materialOf(hit.surface), objectShape(hit.surface).x,
+                        genericHitPoint(hit, origin, direction),
                         vec3(hit.genericNormal));
 #else
     return vec3(1.0);
@@ -232,16 +235,35 @@ RayTask primaryTask(uint k) {
     return RayTask(rayEye(), sampleDirection(k), vec3(1.0), 0u, Medium(vec4(1.0), 0u));
 }
 
+#if VKRAY_SHADOWS
+// The first light from `i` on that faces surface s (whose feeler is to be
+// walked); a light behind the surface adds nothing (a = 0), so it needs no
+// step of its own. The lights passed over are recorded for `vkray pixel`.
+uint nextFacingLight(uint i, GpuMaterial object, Surface s, vec3 v, vec3 k, bool record) {
+    for (; i < frame.counts.x; ++i) {
+        ++loopTurns;
+        if (dot(s.m, lightOf(i).position.xyz - vec3(s.p)) > 0.0) break;
+#if VKRAY_DEBUG_PIXEL
+        lightTerm(object, s, v, k, i, 0.0, record);
+#endif
+    }
+    return i;
+}
+#endif
+
 // This invocation's samples, from where `ray` (GpuRayProgress) says an
 // earlier dispatch left them, until they are done or loopTurns has passed
 // `budget`. Each sample is Hill's shade() down to maxRecursionDepth, its
 // recursion unrolled: the tree of reflected and refracted rays is walked
-// depth first with the stack of pending rays; the lights of a hit are
-// visited one per step, each with its shadow feeler, so that the loop walks
-// the scene (walkScene) in one place only. A dispatch stops only between two
-// rays, when all that is pending is on the stack, so a paused sample goes
-// on as if it had never stopped: the image does not depend on the budget.
-// Sample 0's primary hit gives the AOVs, written to `pixels[firstPixel]`.
+// depth first with the stack of pending rays; the shadow feelers of a hit
+// are walked one per step, so that the loop walks the scene (walkScene) in
+// one place only. Each turn walks once: llvmpipe runs a loop's whole body on
+// every turn, walk included, whatever the lanes need, so the decision to
+// stop is taken at the end of the turn that finished the work, never at the
+// start of an extra one. A dispatch stops only between two rays, when all
+// that is pending is on the stack, so a paused sample goes on as if it had
+// never stopped: the image does not depend on the budget. Sample 0's
+// primary hit gives the AOVs, written to `pixels[firstPixel]`.
 void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint budget) {
     uint sampleIndex = floatBitsToUint(ray.sum.w);
     uint top = floatBitsToUint(ray.color.w);
@@ -253,48 +275,30 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
     // The hit whose lights are being visited (while light < the light count).
     RayTask task;
     Surface s;
-    GpuObject object;
+    GpuMaterial object;
     vec3 k;
-    uint light = frame.counts.x;
+    const uint lightCount = frame.counts.x;
+    uint light = lightCount;
 #if VKRAY_SHADOWS
     rvec3 feelerOrigin;
 #endif
-    bool tracedOne = false;
+    // Sample 0's primary hit (the AOVs), written once after the loop.
+    bool aovFound = false;
+    GpuPixel aov;
     while (true) {
         ++loopTurns;
-        // This step's walk: the feeler toward the next light, or the next ray.
+        // This turn's walk: the feeler toward the next facing light, or the next ray.
+        bool feeler = light < lightCount;
         rvec3 walkOrigin, walkDirection;
         real walkMax = INFINITY;
-        bool feeler = light < frame.counts.x;
         if (feeler) {
-            bool facing = dot(s.m, lights[light].position.xyz - vec3(s.p)) > 0.0;
 #if VKRAY_SHADOWS
-            if (facing) {
-                walkOrigin = feelerOrigin;
-                walkDirection = lights[light].position.xyz - feelerOrigin;
-                walkMax = length(walkDirection);
-                walkDirection /= walkMax;
-            } else
+            walkOrigin = feelerOrigin;
+            walkDirection = lightOf(light).position.xyz - feelerOrigin;
+            walkMax = length(walkDirection);
+            walkDirection /= walkMax;
 #endif
-            {
-                // Behind the surface (a = 0), or no object that could shadow.
-                color += task.weight * lightTerm(object, s, -vec3(task.direction), k, light,
-                                                 facing ? 1.0 : 0.0, task.level == 0u && sampleIndex == 0u);
-                ++light;
-                continue;
-            }
         } else {
-            if (top == 0u) {
-                // The sample is done: its colour joins the sum, in sample order.
-                sum += color;
-                color = vec3(0.0);
-                if (++sampleIndex == samples) break;
-                pushRay(top, primaryTask(sampleIndex));
-            }
-            // Pause once past the budget, after at least one ray (so every
-            // dispatch gets on): the stack holds all that is left.
-            if (loopTurns >= budget && tracedOne) break;
-            tracedOne = true;
             task = popRay(top);
             walkOrigin = task.origin;
             walkDirection = task.direction;
@@ -304,59 +308,88 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
         float through;
         walkScene(walkOrigin, walkDirection, walkMax, feeler, hit, through);
 
+        bool record = task.level == 0u && sampleIndex == 0u;
+        vec3 v = -vec3(task.direction);
         if (feeler) {
-            color += task.weight * lightTerm(object, s, -vec3(task.direction), k, light, through,
-                                             task.level == 0u && sampleIndex == 0u);
-            ++light;
-            continue;
-        }
-        bool firstPrimary = task.level == 0u && sampleIndex == 0u;
-        if (firstPrimary) {
-#if VKRAY_DEBUG_PIXEL
-            debugHit = hit;
-            debugDirection = task.direction;
-#endif
-            pixels[firstPixel].color.w = float(hit.t);
-            pixels[firstPixel].normal = vec4(0.0, 0.0, 0.0, intBitsToFloat(hit.object));
-        }
-        if (hit.object < 0) {
-            color += task.weight * frame.background.rgb;
-            continue;
-        }
-        s = surfaceAt(hit, task.origin, task.direction);
-        k = hitTexture(hit, task.origin, task.direction);
-        object = objects[hit.surface];
-        if (firstPrimary) {
-            pixels[firstPixel].normal.xyz = s.m;
-#if VKRAY_DEBUG_PIXEL
-            debugTexture = k;
-#endif
-        }
-        // Emissive and ambient now, each light in the steps that follow.
-        color += task.weight * (object.emissive.rgb + k * object.ambient.rgb * frame.globalAmbient.rgb);
-        light = 0u;
 #if VKRAY_SHADOWS
-        feelerOrigin = offsetOrigin(s.p, s.geometric, s.m, s.genericScale);  // lit lights are on m's side
+            color += task.weight * lightTerm(object, s, v, k, light, through, record);
+            light = nextFacingLight(light + 1u, object, s, v, k, record);
 #endif
-        // The secondary rays wait on the stack until the lights are done;
-        // refraction goes first, so that reflection is followed first, as in
-        // Hill's shade().
-        if (task.level >= min(frame.sampling.z, MAX_RECURSION_DEPTH)) continue;
+        } else {
+            if (record) {
+#if VKRAY_DEBUG_PIXEL
+                debugHit = hit;
+                debugDirection = task.direction;
+#endif
+                aovFound = true;
+                aov = GpuPixel(vec4(0.0, 0.0, 0.0, float(hit.t)),
+                               vec4(0.0, 0.0, 0.0, intBitsToFloat(hit.object)));
+            }
+            if (hit.object < 0) {
+                color += task.weight * frame.background.rgb;
+            } else {
+                s = surfaceAt(hit, task.origin, task.direction);
+                k = hitTexture(hit, task.origin, task.direction);
+                object = materialOf(hit.surface);
+                uint follow = objectShape(hit.surface).z;
+                if (record) {
+                    aov.normal.xyz = s.m;
+#if VKRAY_DEBUG_PIXEL
+                    debugTexture = k;
+#endif
+                }
+                // Emissive and ambient now; each facing light's feeler in the
+                // turns that follow (without shadows, every light now).
+                color += task.weight * (object.emissive.rgb + k * object.ambient.rgb * frame.globalAmbient.rgb);
+#if VKRAY_SHADOWS
+                feelerOrigin = offsetOrigin(s.p, s.geometric, s.m, s.genericScale);  // lit lights are on m's side
+                light = nextFacingLight(0u, object, s, v, k, record);
+#elif VKRAY_LIGHTS
+                for (uint i = 0u; i < lightCount; ++i) {
+                    ++loopTurns;
+                    bool facing = dot(s.m, lightOf(i).position.xyz - vec3(s.p)) > 0.0;
+                    color += task.weight * lightTerm(object, s, v, k, i, facing ? 1.0 : 0.0, record);
+                }
+#endif
+                // The secondary rays wait on the stack until the lights are
+                // done; refraction goes first, so that reflection is followed
+                // first, as in Hill's shade().
+                if (task.level < min(frame.sampling.z, MAX_RECURSION_DEPTH)) {
 #if VKRAY_REFRACTION
-        if ((object.shape.z & FOLLOW_REFRACTION) != 0u) {
-            Medium medium = task.medium;
-            vec3 t = refracted(vec3(task.direction), s, object.material.z, medium);
-            pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, t, s.genericScale), t,
-                                 task.weight * object.material.y, task.level + 1u, medium));
-        }
+                    if ((follow & FOLLOW_REFRACTION) != 0u) {
+                        Medium medium = task.medium;
+                        vec3 t = refracted(vec3(task.direction), s, object.material.z, medium);
+                        pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, t, s.genericScale), t,
+                                             task.weight * object.material.y, task.level + 1u, medium));
+                    }
 #endif
 #if VKRAY_REFLECTION
-        if ((object.shape.z & FOLLOW_REFLECTION) != 0u) {
-            rvec3 r = normalize(task.direction - 2.0 * dot(task.direction, rvec3(s.m)) * rvec3(s.m));
-            pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, vec3(r), s.genericScale), r,
-                                 task.weight * object.material.x, task.level + 1u, task.medium));
-        }
+                    if ((follow & FOLLOW_REFLECTION) != 0u) {
+                        rvec3 r = normalize(task.direction - 2.0 * dot(task.direction, rvec3(s.m)) * rvec3(s.m));
+                        pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, vec3(r), s.genericScale), r,
+                                             task.weight * object.material.x, task.level + 1u, task.medium));
+                    }
 #endif
+                }
+            }
+        }
+
+        // Between two rays (no feeler left): the sample ends when nothing is
+        // pending, its colour joining the sum in sample order; the dispatch
+        // pauses once past the budget.
+        if (light >= lightCount) {
+            if (top == 0u) {
+                sum += color;
+                color = vec3(0.0);
+                if (++sampleIndex == samples) break;
+                pushRay(top, primaryTask(sampleIndex));
+            }
+            if (loopTurns >= budget) break;
+        }
+    }
+    if (aovFound) {
+        pixels[firstPixel].color.w = aov.color.w;
+        pixels[firstPixel].normal = aov.normal;
     }
     ray = GpuRayProgress(vec4(sum, uintBitsToFloat(sampleIndex)), vec4(color, uintBitsToFloat(top)));
 }

@@ -6,8 +6,8 @@
 const float TEXTURE_PI = 3.14159265358979;
 
 #if VKRAY_PIXMAPS
-layout(std430, set = 0, binding = BINDING_PIXMAPS) readonly buffer PixmapBlock { GpuPixmap pixmaps[]; };
-layout(std430, set = 0, binding = BINDING_TEXELS) readonly buffer TexelBlock { float texels[]; };
+layout(set = 0, binding = BINDING_PIXMAPS, rgba32ui) uniform readonly uimageBuffer pixmapTexels;
+layout(set = 0, binding = BINDING_TEXELS, r32ui) uniform readonly uimageBuffer imageTexels;
 
 // The angle about the generic z axis as u in [0, 1].
 float aroundZ(vec3 g) { return 0.5 + atan(g.y, g.x) / (2.0 * TEXTURE_PI); }
@@ -38,18 +38,19 @@ vec2 surfaceUv(uint kind, vec3 g, vec3 genericNormal) {
 
 // The nearest texel at (u, v): u wraps, v is clamped, v = 1 is the top row.
 vec3 pixmapTexel(uint slot, vec2 uv) {
-    uvec4 image = pixmaps[slot].image;
+    uvec4 image = imageLoad(pixmapTexels, int(slot));  // GpuPixmap.image
     int width = int(image.y), height = int(image.z);
     float u = fract(uv.x), v = clamp(uv.y, 0.0, 1.0);
     int x = clamp(int(floor(u * float(width))), 0, width - 1);
     int y = clamp(int(floor((1.0 - v) * float(height))), 0, height - 1);
-    uint first = image.x + 3u * (uint(y) * uint(width) + uint(x));
-    return vec3(texels[first], texels[first + 1u], texels[first + 2u]);
+    int first = int(image.x + 3u * (uint(y) * uint(width) + uint(x)));
+    return uintBitsToFloat(uvec3(imageLoad(imageTexels, first).x, imageLoad(imageTexels, first + 1).x,
+                                 imageLoad(imageTexels, first + 2).x));
 }
 #endif
 
-// k(p) for the surface GpuObject `surface` at generic point g.
-vec3 textureColor(GpuObject surface, vec3 g, vec3 genericNormal) {
+// k(p) at generic point g of a surface of shape `kind` and material `surface`.
+vec3 textureColor(GpuMaterial surface, uint kind, vec3 g, vec3 genericNormal) {
     uint code = floatBitsToUint(surface.material.w);
     vec4 parameters = surface.texture;
 #if VKRAY_TEXTURES
@@ -70,7 +71,7 @@ vec3 textureColor(GpuObject surface, vec3 g, vec3 genericNormal) {
 #endif
 #if VKRAY_PIXMAPS
     if (code == TEXTURE_IMAGE)
-        return pixmapTexel(floatBitsToUint(parameters.x), surfaceUv(surface.shape.x, g, genericNormal));
+        return pixmapTexel(floatBitsToUint(parameters.x), surfaceUv(kind, g, genericNormal));
 #endif
     return vec3(1.0);
 }

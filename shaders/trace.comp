@@ -30,8 +30,6 @@ layout(local_size_x = WORKGROUP_X, local_size_y = WORKGROUP_Y, local_size_z = 1)
 #endif
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform FrameBlock { FrameParams frame; };
-layout(std430, set = 0, binding = BINDING_OBJECTS) readonly buffer ObjectBlock { GpuObject objects[]; };
-layout(std430, set = 0, binding = BINDING_LIGHTS) readonly buffer LightBlock { GpuLight lights[]; };
 layout(std430, set = 0, binding = BINDING_PIXELS) buffer PixelBlock { GpuPixel pixels[]; };
 layout(std430, set = 0, binding = BINDING_PROGRESS) buffer ProgressBlock { GpuRayProgress progress[]; };
 layout(std430, set = 0, binding = BINDING_STATUS) buffer StatusBlock { GpuDispatchStatus status; };
@@ -43,11 +41,11 @@ layout(std430, set = 0, binding = BINDING_DEBUG) writeonly buffer DebugBlock {
 };
 #endif
 #if VKRAY_PRECISION_FP64
-// The camera and every M^-1 in double, read instead of their float copies
-// in FrameParams and GpuObject.
+// The camera in double, read instead of its float copy in FrameParams (and
+// every M^-1, scene_data.glsl, instead of GpuObjectGeometry's).
 layout(std430, set = 0, binding = BINDING_DOUBLE_CAMERA) readonly buffer DoubleCameraBlock { GpuDoubleCamera doubleCamera; };
-layout(std430, set = 0, binding = BINDING_DOUBLE_OBJECTS) readonly buffer DoubleObjectBlock { GpuDoubleObject doubleObjects[]; };
 #endif
+#include "scene_data.glsl"
 
 const float INFINITY = 1.0 / 0.0;
 
@@ -61,9 +59,9 @@ uint loopTurns = 0u;
 // not renormalised, so the generic t is the world t.
 void toObjectSpace(uint index, rvec3 origin, rvec3 direction, out rvec3 o, out rvec3 d) {
 #if VKRAY_PRECISION_FP64
-    dvec4 rows[3] = doubleObjects[index].objectFromWorld;
+    dvec4 rows[3] = dvec4[3](doubleObjectRow(index, 0u), doubleObjectRow(index, 1u), doubleObjectRow(index, 2u));
 #else
-    vec4 rows[3] = objects[index].objectFromWorld;
+    vec4 rows[3] = vec4[3](objectRow(index, 0u), objectRow(index, 1u), objectRow(index, 2u));
 #endif
     o = rvec3(dot(rows[0], rvec4(origin, 1.0)), dot(rows[1], rvec4(origin, 1.0)),
               dot(rows[2], rvec4(origin, 1.0)));
@@ -71,12 +69,12 @@ void toObjectSpace(uint index, rvec3 origin, rvec3 direction, out rvec3 o, out r
               dot(rows[2].xyz, direction));
 }
 
-// A tapered cylinder's s (GpuObject.shape.y's float bits; unrounded in fp64).
+// A tapered cylinder's s (GpuObjectGeometry.shape.y's float bits; unrounded in fp64).
 real taperOf(uint index) {
 #if VKRAY_PRECISION_FP64
-    return doubleObjects[index].parameters.x;
+    return doubleObjectParameters(index).x;
 #else
-    return uintBitsToFloat(objects[index].shape.y);
+    return uintBitsToFloat(objectShape(index).y);
 #endif
 }
 
@@ -110,7 +108,7 @@ real taperOf(uint index) {
 struct Hit {
     real t;
     int object;          // the scene object (its id), -1 for none
-    uint surface;        // the GpuObject whose surface was hit (a CSG primitive, or the object)
+    uint surface;        // the object whose surface was hit (a CSG primitive, or the object)
     rvec3 genericNormal;  // outward, in the generic space of `surface`
     rvec3 geometricNormal;  // the same, but a mesh's triangle's own instead of the interpolated
 };
@@ -125,12 +123,12 @@ bool intersectObject(uint index, rvec3 origin, rvec3 direction, real tMax, out r
     const real tMin = 0.0;  // robust: secondary rays start off the surface (offsetOrigin)
 #endif
     surface = index;
-    GpuObject object = objects[index];
+    uvec4 shape = objectShape(index);
 #if VKRAY_CSG
-    if (object.shape.x == KIND_BOOLEAN) {
+    if (shape.x == KIND_BOOLEAN) {
         // Meshes in CSG are convex (the host checks): their spans carry the
         // interpolated normal only.
-        bool hit = intersectCsg(object.shape.y, origin, direction, tMin, tMax, t, n, surface);
+        bool hit = intersectCsg(shape.y, origin, direction, tMin, tMax, t, n, surface);
         geometric = n;
         return hit;
     }
@@ -138,11 +136,11 @@ bool intersectObject(uint index, rvec3 origin, rvec3 direction, real tMax, out r
     rvec3 o, d;
     toObjectSpace(index, origin, direction, o, d);
 #if VKRAY_SHAPE_MESH
-    if (object.shape.x == KIND_MESH)
-        return intersectMesh(object.shape.y, o, d, tMin, tMax, t, n, geometric);
+    if (shape.x == KIND_MESH)
+        return intersectMesh(shape.y, o, d, tMin, tMax, t, n, geometric);
 #endif
     bool hit = false;
-    switch (object.shape.x) {
+    switch (shape.x) {
 #if VKRAY_SHAPE_SPHERE
     case KIND_SPHERE: hit = intersectSphere(o, d, tMin, tMax, t, n); break;
 #endif
@@ -199,7 +197,7 @@ void testObject(uint index, rvec3 origin, rvec3 direction, bool feeler, inout Hi
     if (!intersectObject(index, origin, direction, tMax, t, n, geometric, surface)) return;
 #if VKRAY_SHADOWS
     if (feeler) {
-        through *= objects[surface].material.y;
+        through *= uintBitsToFloat(objectShape(surface).w);
         return;
     }
 #endif
@@ -213,11 +211,6 @@ void testObject(uint index, rvec3 origin, rvec3 direction, bool feeler, inout Hi
         hit.geometricNormal = geometric;
     }
 }
-
-#if VKRAY_OBJECT_BVH
-layout(std430, set = 0, binding = BINDING_OBJECT_NODES) readonly buffer ObjectNodeBlock { GpuBvhNode objectNodes[]; };
-layout(std430, set = 0, binding = BINDING_OBJECT_INDEX) readonly buffer ObjectIndexBlock { uint objectIndex[]; };
-#endif
 
 // Every object the ray origin + t direction may meet in (0, tMax), each
 // tested once: for a ray (feeler false, tMax infinite) `hit` ends as the
@@ -236,56 +229,63 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
     through = 1.0;
 #if VKRAY_OBJECT_BVH
     // The unbounded objects (planes) first, as if a leaf, then the BVH's
-    // leaves front to back. A feeler keeps hit.t = tMax: it visits every
-    // node it crosses.
+    // leaves front to back: each turn of the inner loop tests the two
+    // children of the node at hand and goes on to the nearer one the ray
+    // enters, keeping the farther; a leaf ends the turn, its objects tested
+    // by the outer loop. A feeler keeps hit.t = tMax: it visits every node
+    // it crosses.
     uint leafFirst = frame.counts.z, leafCount = frame.counts.w;
     rvec3 invD = 1.0 / direction;
-    uint stack[BVH_STACK_SIZE];
+    uint stack[BVH_STACK_SIZE];  // nodes to visit (bvhNodeCode), with where the ray enters them
     real stackEnter[BVH_STACK_SIZE];
     uint top = 0u;
-    uint node = 0u;
     real enter;
-    GpuBvhNode root = objectNodes[0];
-    bool walking = hitsBox(root.lo.xyz, root.hi.xyz, origin, invD, 0.0, hit.t, enter);
-    bool leafDone = false;  // the last leaf is tested: the walk goes on from the stack
+    GpuBvhNode root = objectNode(0u);
+    if (hitsBox(root.lo.xyz, root.hi.xyz, origin, invD, 0.0, hit.t, enter)) {
+        stack[0] = bvhNodeCode(root);
+        stackEnter[0] = enter;
+        top = 1u;
+    }
     while (through > 0.0) {
         loopTurns += leafCount;
         for (uint i = leafFirst; i < leafFirst + leafCount && through > 0.0; ++i)
-            testObject(objectIndex[i], origin, direction, feeler, hit, through);
+            testObject(objectAt(i), origin, direction, feeler, hit, through);
         leafCount = 0u;
-        while (walking || leafDone) {
+        bool walking = false;  // `children` is the first of the two to test next
+        uint children = 0u;
+        while (true) {
             ++loopTurns;
-            if (!leafDone) {
-                GpuBvhNode n = objectNodes[node];
-                uint count = floatBitsToUint(n.hi.w), first = floatBitsToUint(n.lo.w);
-                if (count > 0u) {
-                    leafFirst = first;
-                    leafCount = count;
-                    leafDone = true;
+            if (!walking) {
+                // The nearest kept node the ray still reaches before its hit.
+                bool found = false;
+                uint code = 0u;
+                while (top > 0u && !found) {
+                    --top;
+                    found = stackEnter[top] <= reach(hit.t, feeler);
+                    code = stack[top];
+                }
+                if (!found) break;
+                if ((code & 7u) != 0u) {
+                    leafFirst = code >> 3u;
+                    leafCount = code & 7u;
                     break;
                 }
-                uint nearIndex, farIndex;
-                real farEnter;
-                int hits = orderChildren(objectNodes[node + 1u], node + 1u, objectNodes[first], first,
-                                         origin, invD, 0.0, reach(hit.t, feeler), nearIndex,
-                                         farIndex, farEnter);
-                if (hits == 2) {
-                    stack[top] = farIndex;
-                    stackEnter[top++] = farEnter;
-                }
-                if (hits > 0) {
-                    node = nearIndex;
-                    continue;
-                }
+                children = code >> 3u;
             }
-            // Next: the nearest kept node the ray still reaches before its hit.
-            leafDone = false;
-            walking = false;
-            while (top > 0u && !walking) {
-                ++loopTurns;
-                --top;
-                walking = stackEnter[top] <= reach(hit.t, feeler);
-                node = stack[top];
+            uint nearCode, farCode;
+            real farEnter;
+            int hits = orderChildren(objectNode(children), objectNode(children + 1u), origin, invD,
+                                     0.0, reach(hit.t, feeler), nearCode, farCode, farEnter);
+            if (hits == 2) {
+                stack[top] = farCode;
+                stackEnter[top++] = farEnter;
+            }
+            walking = hits > 0 && (nearCode & 7u) == 0u;
+            children = nearCode >> 3u;
+            if (hits > 0 && !walking) {
+                leafFirst = nearCode >> 3u;
+                leafCount = nearCode & 7u;
+                break;
             }
         }
         if (leafCount == 0u) break;
@@ -366,7 +366,7 @@ void recordObjectTests(rvec3 origin, rvec3 direction) {
 void recordDebug(GpuPixel result) {
     rvec3 origin = rayEye();
     recordObjectTests(origin, debugDirection);
-    GpuObject object = objects[debugHit.surface];
+    GpuMaterial object = materialOf(debugHit.surface);
     bool hitSomething = debugHit.object >= 0;
     rvec3 p = hitSomething ? origin + debugHit.t * debugDirection : rvec3(0.0);
     debugHeader.rayOrigin = vec4(origin, 0.0);
@@ -385,6 +385,17 @@ void main() {
     // This invocation's pixel: one per pixel, or one per block x block pixels.
     uint block = frame.image.z;
     uvec2 rayInTile = gl_GlobalInvocationID.xy;
+#ifndef VKRAY_ROW_LANES  // an experiment: off unless -D defines it (BENCHMARKS.md)
+    // llvmpipe runs 8 invocations consecutive in x as one SIMD vector, and
+    // a loop turns until its slowest lane is done: each vector (a row of an
+    // 8x8 workgroup) takes a compact 4x2 block of rays, whose paths stay
+    // closer than those of 8 in a row.
+    if (gl_WorkGroupSize.x == 8u && gl_WorkGroupSize.y % 2u == 0u) {
+        uvec2 local = gl_LocalInvocationID.xy;
+        rayInTile = gl_WorkGroupID.xy * gl_WorkGroupSize.xy +
+                    uvec2((local.y & 1u) * 4u + (local.x & 3u), (local.y >> 1u) * 2u + (local.x >> 2u));
+    }
+#endif
     uvec2 tileSize = tileParams.tile.zw;
     uvec2 first = rayInTile * block;  // first pixel of the block, tile-relative
     if (first.x >= tileSize.x || first.y >= tileSize.y) return;

@@ -17,8 +17,8 @@
 #if !defined(VKRAY_TEXTURES) || !defined(VKRAY_PIXMAPS) || !defined(VKRAY_ANTIALIAS)
 #error "a shading flag (VKRAY_TEXTURES, _PIXMAPS, _ANTIALIAS) is not defined: the host defines every variant flag, 0 or 1"
 #endif
-#if !defined(VKRAY_OBJECT_BVH) || !defined(VKRAY_DEBUG_PIXEL)
-#error "VKRAY_OBJECT_BVH or VKRAY_DEBUG_PIXEL is not defined: the host defines every variant flag, 0 or 1"
+#if !defined(VKRAY_LIGHTS) || !defined(VKRAY_OBJECT_BVH) || !defined(VKRAY_DEBUG_PIXEL)
+#error "VKRAY_LIGHTS, VKRAY_OBJECT_BVH or VKRAY_DEBUG_PIXEL is not defined: the host defines every variant flag, 0 or 1"
 #endif
 #if !defined(VKRAY_PRECISION_NAIVE) || !defined(VKRAY_PRECISION_FP64)
 #error "VKRAY_PRECISION_NAIVE or VKRAY_PRECISION_FP64 is not defined: the host defines every variant flag, 0 or 1"

@@ -435,6 +435,7 @@ int runDevices(std::ostream& out) {
             << (d.shaderFloat64 ? "yes" : "no") << ", subgroup size " << d.subgroupSize
             << ", max storage buffer " << d.maxStorageBufferRange << " bytes"
             << ", max uniform buffer " << d.maxUniformBufferRange << " bytes"
+            << ", max texel buffer " << d.maxTexelBufferElements << " texels"
             << ", memory heap " << d.memoryHeapBytes << " bytes"
             << ", max workgroup size " << d.maxWorkgroupSize[0] << "x" << d.maxWorkgroupSize[1]
             << "x" << d.maxWorkgroupSize[2] << ", max workgroup count " << d.maxWorkgroupCount[0]

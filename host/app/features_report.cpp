@@ -44,6 +44,7 @@ std::string bufferSize(std::uint32_t binding, const gpu::GpuScene& packed, const
     switch (binding) {
     case BINDING_FRAME: return std::to_string(sizeof(FrameParams)) + " bytes";
     case BINDING_OBJECTS: return arrayBytes(packed.objects);
+    case BINDING_MATERIALS: return arrayBytes(packed.materials);
     case BINDING_LIGHTS: return arrayBytes(packed.lights);
     case BINDING_PIXELS: return "one tile of " + std::to_string(sizeof(GpuPixel)) + "-byte pixels";
     case BINDING_PROGRESS:
@@ -185,7 +186,9 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     for (const gpu::ShaderBinding& b : gpu::bindingsFor(features)) {
         char line[96];
         std::snprintf(line, sizeof line, "  %2u %-24s %-8s ", b.binding, b.name,
-                      b.uniform ? "uniform" : "storage");
+                      b.kind == gpu::BindingKind::Uniform   ? "uniform"
+                      : b.kind == gpu::BindingKind::Storage ? "storage"
+                                                            : "texels");
         out << line << bufferSize(b.binding, packed, scene, features.doubles) << "\n";
     }
     return out.str();

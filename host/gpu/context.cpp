@@ -66,6 +66,7 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& device, int index) {
     info.shaderFloat64 = device.getFeatures().shaderFloat64 && injectedFault() != Fault::NoFloat64;
     info.maxStorageBufferRange = props.limits.maxStorageBufferRange;
     info.maxUniformBufferRange = props.limits.maxUniformBufferRange;
+    info.maxTexelBufferElements = props.limits.maxTexelBufferElements;
     info.maxMemoryAllocationSize =
         chain.get<vk::PhysicalDeviceMaintenance3Properties>().maxMemoryAllocationSize;
     // vkray's buffers are host-visible (HostBuffer): their heap is the one that counts.

@@ -23,6 +23,7 @@ struct DeviceInfo {
     bool shaderFloat64 = false;
     std::uint64_t maxStorageBufferRange = 0;
     std::uint64_t maxUniformBufferRange = 0;
+    std::uint64_t maxTexelBufferElements = 0;
     std::uint64_t maxMemoryAllocationSize = 0;  // Vulkan 1.1 (maintenance3)
     std::uint64_t memoryHeapBytes = 0;          // the heap of the first host-visible memory type
     std::uint32_t maxWorkgroupCount[3] = {};

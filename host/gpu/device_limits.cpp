@@ -56,6 +56,8 @@ DeviceLimits deviceLimits(const DeviceInfo& device) {
     limits.maxStorageBufferRange =
         lowerByEnvironment("VKRAY_MAX_BUFFER_BYTES", device.maxStorageBufferRange);
     limits.maxUniformBufferRange = device.maxUniformBufferRange;
+    limits.maxTexelBufferElements =
+        lowerByEnvironment("VKRAY_MAX_TEXELS", device.maxTexelBufferElements);
     limits.maxMemoryAllocationSize = device.maxMemoryAllocationSize;
     limits.memoryHeapBytes = lowerByEnvironment("VKRAY_DEVICE_MEMORY_BYTES", device.memoryHeapBytes);
     limits.maxWorkgroupCount[0] = device.maxWorkgroupCount[0];
@@ -73,7 +75,8 @@ void checkBufferNeeds(const std::vector<BufferNeed>& needs, const DeviceLimits& 
         const std::uint64_t range =
             need.uniform ? limits.maxUniformBufferRange : limits.maxStorageBufferRange;
         const char* rangeName = need.uniform ? "maxUniformBufferRange" : "maxStorageBufferRange";
-        const bool overRange = bytes > range;
+        // A texel buffer's bound is its texel count (below), not a buffer range.
+        const bool overRange = need.texelBytes == 0 && bytes > range;
         if (overRange || (limits.maxMemoryAllocationSize && bytes > limits.maxMemoryAllocationSize)) {
             const std::uint64_t limit = overRange ? range : limits.maxMemoryAllocationSize;
             throw Error("the scene's " + std::to_string(need.count) + " " + need.what + " need " +
@@ -82,6 +85,16 @@ void checkBufferNeeds(const std::vector<BufferNeed>& needs, const DeviceLimits& 
                         bytesText(limit, overRange ? rangeName : "maxMemoryAllocationSize") +
                         ", room for " + std::to_string(limit / need.itemBytes) + " " + need.what +
                         ". " + need.advice + ", or render with --cpu (no such limit)");
+        }
+        if (need.texelBytes > 0 && bytes / need.texelBytes > limits.maxTexelBufferElements) {
+            const std::uint64_t room =
+                limits.maxTexelBufferElements * need.texelBytes / need.itemBytes;
+            throw Error("the scene's " + std::to_string(need.count) + " " + need.what + " need " +
+                        std::to_string(bytes / need.texelBytes) + " texels in one texel buffer; " +
+                        limits.deviceName + " allows at most " +
+                        std::to_string(limits.maxTexelBufferElements) +
+                        " (maxTexelBufferElements), room for " + std::to_string(room) + " " +
+                        need.what + ". " + need.advice + ", or render with --cpu (no such limit)");
         }
         total += rounded(bytes);
         sizes.emplace_back(bytes, need.what);

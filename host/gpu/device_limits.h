@@ -1,6 +1,6 @@
 // What a scene asks of the Vulkan device, checked against what the device
 // allows before anything is allocated: each buffer against the largest
-// storage (or uniform) buffer and allocation, their sum against the memory
+// storage (or uniform) buffer, texel-buffer view and allocation, their sum against the memory
 // heap, each dispatch against the largest workgroup count. A scene beyond a
 // limit is refused with the count that is too big, the limit, and what to do.
 // Pure functions over plain numbers, so the tests need no device.
@@ -19,6 +19,7 @@ struct DeviceLimits {
     std::string deviceName;
     std::uint64_t maxStorageBufferRange = 0;
     std::uint64_t maxUniformBufferRange = 0;
+    std::uint64_t maxTexelBufferElements = 0;  // texels in one texel-buffer view
     std::uint64_t maxMemoryAllocationSize = 0;
     std::uint64_t memoryHeapBytes = 0;  // the heap vkray's (host-visible) buffers live in
     std::uint32_t maxWorkgroupCount[2] = {};
@@ -27,6 +28,7 @@ struct DeviceLimits {
 // The device's limits, lowered (never raised) by two test hooks, so that the
 // refusals can be tested without a scene of gigabytes:
 //   VKRAY_MAX_BUFFER_BYTES     caps the storage buffer range
+//   VKRAY_MAX_TEXELS           caps the texels of one texel buffer
 //   VKRAY_DEVICE_MEMORY_BYTES  caps the memory heap
 // A value that is not a whole number > 0 is an Error naming the variable.
 DeviceLimits deviceLimits(const DeviceInfo& device);
@@ -39,6 +41,7 @@ struct BufferNeed {
     std::size_t itemBytes = 0;
     bool uniform = false;  // a uniform buffer (else storage)
     std::string advice;
+    std::size_t texelBytes = 0;  // read through a texel buffer of texels this size (0: not)
 };
 
 // Throws Error when one buffer exceeds its range or the largest allocation,

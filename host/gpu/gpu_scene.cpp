@@ -52,18 +52,21 @@ vec4 packTexture(const Scene& scene, const Material& m) {
     }
 }
 
-GpuObject packObject(const Scene& scene, const SceneObject& object) {
-    GpuObject g{};
+// What a walk reads of the object (GpuObjectGeometry) and its material.
+struct PackedObject {
+    GpuObjectGeometry geometry;
+    GpuMaterial material;
+};
+
+PackedObject packObject(const Scene& scene, const SceneObject& object) {
+    PackedObject packed{};
+    GpuObjectGeometry& g = packed.geometry;
     // M^-1 was composed in double from exact inverses; only now rounded to float.
     const glm::dmat4& inv = object.objectFromWorld;
     for (int row = 0; row < 3; ++row)
         g.objectFromWorld[row] = {float(inv[0][row]), float(inv[1][row]), float(inv[2][row]),
                                   float(inv[3][row])};
     const Material& m = object.material;
-    g.ambient = toVec4(m.ambient);
-    g.diffuse = toVec4(m.diffuse);
-    g.specular = toVec4(m.specular, m.specularExponent);
-    g.emissive = toVec4(m.emissive);
     const uint kind = gpuKindOf(object.type);
     uint parameter = 0;
     if (kind == KIND_TAPERED_CYLINDER) parameter = floatBits(float(object.taper));
@@ -71,11 +74,16 @@ GpuObject packObject(const Scene& scene, const SceneObject& object) {
     uint follow = 0;
     if (scene.maxRecursionDepth > 0 && m.reflectivity > scene.minReflectivity) follow |= FOLLOW_REFLECTION;
     if (scene.maxRecursionDepth > 0 && m.transparency > scene.minTransparency) follow |= FOLLOW_REFRACTION;
-    g.shape = {kind, parameter, follow, 0};
-    g.material = {float(m.reflectivity), float(m.transparency), float(m.speedOfLight),
-                  bitsAsFloat(uint(m.texture))};
-    g.texture = packTexture(scene, m);
-    return g;
+    g.shape = {kind, parameter, follow, floatBits(float(m.transparency))};
+    GpuMaterial& material = packed.material;
+    material.ambient = toVec4(m.ambient);
+    material.diffuse = toVec4(m.diffuse);
+    material.specular = toVec4(m.specular, m.specularExponent);
+    material.emissive = toVec4(m.emissive);
+    material.material = {float(m.reflectivity), float(m.transparency), float(m.speedOfLight),
+                         bitsAsFloat(uint(m.texture))};
+    material.texture = packTexture(scene, m);
+    return packed;
 }
 
 // The fp64 variant's copy of M^-1, unrounded.
@@ -88,8 +96,36 @@ GpuDoubleObject packDoubleObject(const SceneObject& object) {
     return g;
 }
 
-GpuBvhNode packNode(const BvhNode& node, uint first) {
-    return {toVec4(node.bounds.lo, bitsAsFloat(first)), toVec4(node.bounds.hi, bitsAsFloat(node.count))};
+// The BVH in the shader's layout (layout.h, GpuBvhNode): the root first,
+// then each interior node's two children side by side, placed breadth first.
+std::vector<GpuBvhNode> packBvh(const Bvh& bvh) {
+    std::vector<GpuBvhNode> packed;
+    if (bvh.nodes.empty()) return packed;
+    packed.reserve(bvh.nodes.size());
+    const auto entry = [](const BvhNode& node) {
+        if (node.leaf() && (node.count > BVH_LEAF_MAX || node.first > BVH_FIRST_MAX))
+            throw Error("internal: a BVH leaf beyond the shader's bounds (" +
+                        std::to_string(node.count) + " entries from " + std::to_string(node.first) + ")");
+        return GpuBvhNode{toVec4(node.bounds.lo, bitsAsFloat(node.leaf() ? node.first : 0)),
+                          toVec4(node.bounds.hi, bitsAsFloat(node.count))};
+    };
+    packed.push_back(entry(bvh.nodes[0]));
+    // (packed index, node index) of the interior nodes whose children are still to place.
+    std::vector<std::pair<std::size_t, std::uint32_t>> pending{{0, 0}};
+    for (std::size_t next = 0; next < pending.size(); ++next) {
+        const auto [at, index] = pending[next];
+        const BvhNode& node = bvh.nodes[index];
+        if (node.leaf()) continue;
+        const std::uint32_t children[2] = {index + 1, node.first};
+        const std::size_t first = packed.size();
+        if (first > BVH_FIRST_MAX) throw Error("internal: a BVH beyond the shader's node index bound");
+        packed[at].lo.w = bitsAsFloat(uint(first));
+        for (int k = 0; k < 2; ++k) {
+            pending.emplace_back(packed.size(), children[k]);
+            packed.push_back(entry(bvh.nodes[children[k]]));
+        }
+    }
+    return packed;
 }
 
 std::string located(const SceneObject& object, const std::string& message) {
@@ -152,7 +188,9 @@ private:
         }
         const uint spans = leafSpans(node, root);
         packed_.csgNodes.push_back({{CSG_LEAF, uint(packed_.objects.size()), 0, 0}});
-        packed_.objects.push_back(packObject(scene_, node));
+        const PackedObject primitive = packObject(scene_, node);
+        packed_.objects.push_back(primitive.geometry);
+        packed_.materials.push_back(primitive.material);
         packed_.doubleObjects.push_back(packDoubleObject(node));
         return {spans, 1};
     }
@@ -189,7 +227,8 @@ void packMeshes(const Scene& scene, GpuScene& packed) {
         const uint firstNode = uint(packed.meshNodes.size());
         const uint firstTriangle = uint(packed.triangles.size());
         packed.meshes.push_back({{firstNode, firstTriangle, uint(mesh->triangles.size()), 0}});
-        for (const BvhNode& node : mesh->bvh.nodes) packed.meshNodes.push_back(packNode(node, node.first));
+        const std::vector<GpuBvhNode> nodes = packBvh(mesh->bvh);
+        packed.meshNodes.insert(packed.meshNodes.end(), nodes.begin(), nodes.end());
         // Triangles in leaf order, so that a leaf's range is contiguous.
         for (std::uint32_t index : mesh->bvh.order) {
             const TriangleMesh::Triangle& t = mesh->triangles[index];
@@ -210,13 +249,16 @@ void packMeshes(const Scene& scene, GpuScene& packed) {
 GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
     GpuScene packed;
     packed.objects.reserve(scene.objects.size());
+    packed.materials.reserve(scene.objects.size());
     packed.doubleObjects.reserve(scene.objects.size());
     for (const SceneObject& object : scene.objects) {
         if (!isBoolean(object.type) && gpuKindOf(object.type) == KIND_MESH &&
             (object.mesh < 0 || size_t(object.mesh) >= scene.meshes.size()))
             throw Error(located(object, std::string("'") + shapeKeyword(object.type) +
                                             "' has no geometry loaded"));
-        packed.objects.push_back(packObject(scene, object));
+        const PackedObject p = packObject(scene, object);
+        packed.objects.push_back(p.geometry);
+        packed.materials.push_back(p.material);
         packed.doubleObjects.push_back(packDoubleObject(object));
     }
     for (const Light& light : scene.lights)
@@ -247,7 +289,7 @@ GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
 
     if (features.objectBvh) {
         const ObjectBvh objects = buildObjectBvh(scene);
-        for (const BvhNode& node : objects.bvh.nodes) packed.objectNodes.push_back(packNode(node, node.first));
+        packed.objectNodes = packBvh(objects.bvh);
         packed.objectIndex.assign(objects.bvh.order.begin(), objects.bvh.order.end());
         packed.unboundedFirst = uint(packed.objectIndex.size());
         packed.unboundedCount = uint(objects.unbounded.size());

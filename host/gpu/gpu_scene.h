@@ -14,7 +14,8 @@
 namespace vkray::gpu {
 
 struct GpuScene {
-    std::vector<GpuObject> objects;  // the scene's objects (ids), then CSG primitives
+    std::vector<GpuObjectGeometry> objects;  // the scene's objects (ids), then CSG primitives
+    std::vector<GpuMaterial> materials;       // theirs, in the same order
     std::vector<GpuDoubleObject> doubleObjects;  // the same in double (fp64 variant)
     std::vector<GpuLight> lights;
     // features.objectBvh: nodes over the bounded objects; objectIndex holds

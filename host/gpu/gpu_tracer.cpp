@@ -43,6 +43,35 @@ double processCpuSeconds() {
     return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
+vk::DescriptorType descriptorType(BindingKind kind) {
+    switch (kind) {
+    case BindingKind::Uniform: return vk::DescriptorType::eUniformBuffer;
+    case BindingKind::Storage: return vk::DescriptorType::eStorageBuffer;
+    case BindingKind::Texels:
+    case BindingKind::UintTexels: return vk::DescriptorType::eStorageTexelBuffer;
+    }
+    throw Error("internal: a binding of no known kind");
+}
+
+vk::BufferUsageFlags bufferUsage(BindingKind kind) {
+    switch (kind) {
+    case BindingKind::Uniform: return vk::BufferUsageFlagBits::eUniformBuffer;
+    case BindingKind::Storage: return vk::BufferUsageFlagBits::eStorageBuffer;
+    case BindingKind::Texels:
+    case BindingKind::UintTexels: return vk::BufferUsageFlagBits::eStorageTexelBuffer;
+    }
+    throw Error("internal: a binding of no known kind");
+}
+
+// The texel format of a texel-buffer binding: a uvec4 or a uint a texel.
+vk::Format texelFormat(BindingKind kind) {
+    return kind == BindingKind::UintTexels ? vk::Format::eR32Uint : vk::Format::eR32G32B32A32Uint;
+}
+
+std::size_t texelBytes(BindingKind kind) {
+    return kind == BindingKind::UintTexels ? 4 : kind == BindingKind::Texels ? 16 : 0;
+}
+
 template <typename T>
 std::unique_ptr<HostBuffer> makeBuffer(Context::Impl& c, const std::vector<T>& items,
                                        vk::BufferUsageFlags usage) {
@@ -54,9 +83,10 @@ std::unique_ptr<HostBuffer> makeBuffer(Context::Impl& c, const std::vector<T>& i
     return buffer;
 }
 
+// A scene array read through a texel buffer (rgba32ui, or r32ui for uint items).
 template <typename T>
 BufferNeed need(const char* what, const std::vector<T>& items, const char* advice) {
-    return {what, items.size(), sizeof(T), false, advice};
+    return {what, items.size(), sizeof(T), false, advice, sizeof(T) % 16 == 0 ? 16u : 4u};
 }
 
 // Every buffer TracePass allocates for this variant, before it allocates any.
@@ -68,6 +98,7 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     std::vector<BufferNeed> needs{
         {"frame parameters", 1, sizeof(FrameParams), true, "Use another --device"},
         need("objects", packed.objects, fewerObjects),
+        need("materials", packed.materials, fewerObjects),
         need("lights", packed.lights, "Use fewer lights"),
         {"tile pixels", tilePixels, sizeof(GpuPixel), false, "Use a smaller --block"},
         {"ray progress", tileRays, sizeof(GpuRayProgress), false, "Use a smaller --block"},
@@ -120,70 +151,69 @@ public:
                                      tileRays, pendingRays, debugEntries),
                          deviceLimits(c.info));
         const std::vector<FrameParams> frameParams{packFrame(scene, packed, camera, settings)};
-        using Usage = vk::BufferUsageFlagBits;
         // Only the buffers this variant reads (the same list as its bindings).
-        add(BINDING_FRAME, makeBuffer(c, frameParams, Usage::eUniformBuffer));
-        add(BINDING_OBJECTS, makeBuffer(c, packed.objects, Usage::eStorageBuffer));
-        add(BINDING_LIGHTS, makeBuffer(c, packed.lights, Usage::eStorageBuffer));
-        add(BINDING_PIXELS, makeBuffer(c, std::vector<GpuPixel>(size_t(tile) * size_t(tile)),
-                                       Usage::eStorageBuffer));
-        add(BINDING_PROGRESS, std::make_unique<HostBuffer>(c, sizeof(GpuRayProgress) * tileRays,
-                                                           Usage::eStorageBuffer));
-        add(BINDING_STATUS, makeBuffer(c, std::vector<GpuDispatchStatus>(1), Usage::eStorageBuffer));
+        const std::vector<ShaderBinding> bindings = bindingsFor(features);
+        for (const ShaderBinding& b : bindings) kinds_[b.binding] = b.kind;
+        add(BINDING_FRAME, frameParams);
+        add(BINDING_OBJECTS, packed.objects);
+        add(BINDING_MATERIALS, packed.materials);
+        if (kinds_.count(BINDING_LIGHTS)) add(BINDING_LIGHTS, packed.lights);
+        add(BINDING_PIXELS, std::vector<GpuPixel>(size_t(tile) * size_t(tile)));
+        allocate(BINDING_PROGRESS, sizeof(GpuRayProgress) * tileRays);
+        add(BINDING_STATUS, std::vector<GpuDispatchStatus>(1));
         if (rayStack)
-            add(BINDING_RAY_STACK,
-                std::make_unique<HostBuffer>(
-                    c, pendingRays * (doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask)),
-                    Usage::eStorageBuffer));
+            allocate(BINDING_RAY_STACK,
+                     pendingRays * (doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask)));
         if (features.debugPixel) {
             // A header and one entry per object and per light, zeroed.
             static_assert(sizeof(GpuDebugHeader) == 4 * sizeof(GpuDebugEntry));
-            add(BINDING_DEBUG, makeBuffer(c, std::vector<GpuDebugEntry>(debugEntries),
-                                          Usage::eStorageBuffer));
+            add(BINDING_DEBUG, std::vector<GpuDebugEntry>(debugEntries));
         }
         if (features.objectBvh) {
-            add(BINDING_OBJECT_NODES, makeBuffer(c, packed.objectNodes, Usage::eStorageBuffer));
-            add(BINDING_OBJECT_INDEX, makeBuffer(c, packed.objectIndex, Usage::eStorageBuffer));
+            add(BINDING_OBJECT_NODES, packed.objectNodes);
+            add(BINDING_OBJECT_INDEX, packed.objectIndex);
         }
         if (features.kinds[KIND_MESH]) {
-            add(BINDING_MESHES, makeBuffer(c, packed.meshes, Usage::eStorageBuffer));
-            add(BINDING_MESH_NODES, makeBuffer(c, packed.meshNodes, Usage::eStorageBuffer));
-            add(BINDING_TRIANGLES, makeBuffer(c, packed.triangles, Usage::eStorageBuffer));
+            add(BINDING_MESHES, packed.meshes);
+            add(BINDING_MESH_NODES, packed.meshNodes);
+            add(BINDING_TRIANGLES, packed.triangles);
         }
-        if (features.kinds[KIND_BOOLEAN])
-            add(BINDING_CSG_NODES, makeBuffer(c, packed.csgNodes, Usage::eStorageBuffer));
+        if (features.kinds[KIND_BOOLEAN]) add(BINDING_CSG_NODES, packed.csgNodes);
         if (features.has(Shading::Pixmaps)) {
-            add(BINDING_PIXMAPS, makeBuffer(c, packed.pixmaps, Usage::eStorageBuffer));
-            add(BINDING_TEXELS, makeBuffer(c, packed.texels, Usage::eStorageBuffer));
+            add(BINDING_PIXMAPS, packed.pixmaps);
+            add(BINDING_TEXELS, packed.texels);
         }
         if (doubles) {
-            add(BINDING_DOUBLE_CAMERA, makeBuffer(c, std::vector<GpuDoubleCamera>{packDoubleCamera(camera)},
-                                                  Usage::eStorageBuffer));
-            add(BINDING_DOUBLE_OBJECTS, makeBuffer(c, packed.doubleObjects, Usage::eStorageBuffer));
+            add(BINDING_DOUBLE_CAMERA, std::vector<GpuDoubleCamera>{packDoubleCamera(camera)});
+            add(BINDING_DOUBLE_OBJECTS, packed.doubleObjects);
         }
         // Exactly the variant's bindings (bindingsFor): no buffer uploaded for nothing.
-        const std::vector<ShaderBinding> bindings = bindingsFor(features);
-        if (bindings.size() != buffers_.size() ||
-            !std::all_of(bindings.begin(), bindings.end(),
-                         [&](const ShaderBinding& b) { return buffers_.count(b.binding) > 0; }))
+        if (bindings.size() != buffers_.size())
             throw Error("internal: the buffers uploaded differ from the variant's bindings");
 
-        const std::array<vk::DescriptorPoolSize, 2> poolSizes{{
-            {vk::DescriptorType::eUniformBuffer, 1},
-            {vk::DescriptorType::eStorageBuffer, uint(buffers_.size())},
-        }};
+        std::map<vk::DescriptorType, uint> descriptorCounts;
+        for (const ShaderBinding& b : bindings) ++descriptorCounts[descriptorType(b.kind)];
+        std::vector<vk::DescriptorPoolSize> poolSizes;
+        for (const auto& [type, count] : descriptorCounts) poolSizes.emplace_back(type, count);
         pool_ = vk::raii::DescriptorPool(
             c.device, {vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, poolSizes});
         set_ = std::move(vk::raii::DescriptorSets(c.device, {*pool_, *pipeline.setLayout}).front());
         std::vector<vk::DescriptorBufferInfo> infos;
         infos.reserve(buffers_.size());
+        views_.reserve(buffers_.size());
         std::vector<vk::WriteDescriptorSet> writes;
         for (const auto& [binding, buffer] : buffers_) {
-            infos.emplace_back(buffer->buffer(), 0, VK_WHOLE_SIZE);
-            writes.emplace_back(*set_, binding, 0, 1,
-                                binding == BINDING_FRAME ? vk::DescriptorType::eUniformBuffer
-                                                         : vk::DescriptorType::eStorageBuffer,
-                                nullptr, &infos.back());
+            const BindingKind kind = kinds_.at(binding);
+            vk::WriteDescriptorSet& write =
+                writes.emplace_back(*set_, binding, 0, 1, descriptorType(kind));
+            if (texelBytes(kind) > 0) {
+                views_.emplace_back(c.device, vk::BufferViewCreateInfo({}, buffer->buffer(),
+                                                                       texelFormat(kind), 0,
+                                                                       VK_WHOLE_SIZE));
+                write.setPTexelBufferView(&*views_.back());  // reserved: the views stay put
+            } else {
+                write.setPBufferInfo(&infos.emplace_back(buffer->buffer(), 0, VK_WHOLE_SIZE));
+            }
         }
         c.device.updateDescriptorSets(writes, nullptr);
 
@@ -267,14 +297,23 @@ public:
     }
 
 private:
-    void add(uint binding, std::unique_ptr<HostBuffer> buffer) {
-        buffers_.emplace(binding, std::move(buffer));
+    // The buffer of `binding`, made for the way the variant reads it, holding `items`.
+    template <typename T>
+    void add(uint binding, const std::vector<T>& items) {
+        buffers_.emplace(binding, makeBuffer(c_, items, bufferUsage(kinds_.at(binding))));
+    }
+    // The same, `bytes` left as they are: the shader writes before it reads.
+    void allocate(uint binding, size_t bytes) {
+        buffers_.emplace(binding,
+                         std::make_unique<HostBuffer>(c_, bytes, bufferUsage(kinds_.at(binding))));
     }
     HostBuffer& buffer(uint binding) const { return *buffers_.at(binding); }
 
     Context::Impl& c_;
     const Pipeline& pipeline_;
+    std::map<uint, BindingKind> kinds_;  // the variant's bindings
     std::map<uint, std::unique_ptr<HostBuffer>> buffers_;  // by binding
+    std::vector<vk::raii::BufferView> views_;  // of the texel buffers
     vk::raii::DescriptorPool pool_ = nullptr;
     vk::raii::DescriptorSet set_ = nullptr;
     vk::raii::CommandBuffer commands_ = nullptr;
@@ -336,9 +375,7 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     const auto bind = [&](uint binding, vk::DescriptorType type) {
         bindings.emplace_back(binding, type, 1, vk::ShaderStageFlagBits::eCompute);
     };
-    for (const ShaderBinding& b : bindingsFor(features))
-        bind(b.binding, b.uniform ? vk::DescriptorType::eUniformBuffer
-                                  : vk::DescriptorType::eStorageBuffer);
+    for (const ShaderBinding& b : bindingsFor(features)) bind(b.binding, descriptorType(b.kind));
     p->setLayout = vk::raii::DescriptorSetLayout(c.device, {{}, bindings});
     const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0, sizeof(TileParams));
     p->layout = vk::raii::PipelineLayout(c.device, {{}, *p->setLayout, pushRange});

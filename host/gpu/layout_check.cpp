@@ -12,15 +12,25 @@ namespace vkray::gpu {
 static_assert(sizeof(vec4) == 16 && alignof(vec4) == 16);
 static_assert(sizeof(uvec4) == 16 && alignof(uvec4) == 16);
 
-static_assert(offsetof(GpuObject, objectFromWorld) == 0);
-static_assert(offsetof(GpuObject, ambient) == 48);
-static_assert(offsetof(GpuObject, diffuse) == 64);
-static_assert(offsetof(GpuObject, specular) == 80);
-static_assert(offsetof(GpuObject, emissive) == 96);
-static_assert(offsetof(GpuObject, shape) == 112);
-static_assert(offsetof(GpuObject, material) == 128);
-static_assert(offsetof(GpuObject, texture) == 144);
-static_assert(sizeof(GpuObject) == 160);
+static_assert(offsetof(GpuObjectGeometry, objectFromWorld) == 0);
+static_assert(offsetof(GpuObjectGeometry, shape) == 48);
+static_assert(offsetof(GpuMaterial, ambient) == 0);
+static_assert(offsetof(GpuMaterial, diffuse) == 16);
+static_assert(offsetof(GpuMaterial, specular) == 32);
+static_assert(offsetof(GpuMaterial, emissive) == 48);
+static_assert(offsetof(GpuMaterial, material) == 64);
+static_assert(offsetof(GpuMaterial, texture) == 80);
+
+// Each structure read through a texel buffer is a whole number of texels
+// (scene_data.glsl indexes them by *_TEXELS).
+constexpr std::size_t kTexel = sizeof(uvec4);
+static_assert(sizeof(GpuObjectGeometry) == OBJECT_GEOMETRY_TEXELS * kTexel);
+static_assert(sizeof(GpuMaterial) == MATERIAL_TEXELS * kTexel);
+static_assert(sizeof(GpuLight) == LIGHT_TEXELS * kTexel);
+static_assert(sizeof(GpuBvhNode) == BVH_NODE_TEXELS * kTexel);
+static_assert(sizeof(GpuTriangle) == TRIANGLE_TEXELS * kTexel);
+static_assert(sizeof(GpuDoubleObject) == DOUBLE_OBJECT_TEXELS * kTexel);
+static_assert(sizeof(GpuMesh) == kTexel && sizeof(GpuCsgNode) == kTexel && sizeof(GpuPixmap) == kTexel);
 
 static_assert(sizeof(GpuPixmap) == 16);
 

@@ -62,6 +62,7 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
     ShaderFeatures features;
     for (const SceneObject& object : scene.objects) addObject(scene, object, features);
     features.shading[size_t(Shading::Shadows)] = canShadow(scene);
+    features.lights = !scene.lights.empty() || allFeatures;
     features.shading[size_t(Shading::Antialias)] = settings.spp > 1;
     if (allFeatures) {
         features.kinds.fill(true);
@@ -83,6 +84,8 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines) {
         defines.emplace_back(kGpuKinds[kind].define, flag(features.kinds[kind]));
     for (std::size_t i = 0; i < kGpuShading.size(); ++i)
         defines.emplace_back(kGpuShading[i].define, flag(features.shading[i]));
+    // Shadows are feelers toward lights: they bring the light code in.
+    defines.emplace_back("VKRAY_LIGHTS", flag(features.lights || features.has(Shading::Shadows)));
     defines.emplace_back("VKRAY_OBJECT_BVH", flag(features.objectBvh));
     defines.emplace_back("VKRAY_DEBUG_PIXEL", flag(features.debugPixel));
     defines.insert(defines.end(), userDefines.begin(), userDefines.end());
@@ -93,7 +96,7 @@ std::vector<std::string> variantFlags() {
     std::vector<std::string> flags;
     for (const GpuKind& kind : kGpuKinds) flags.push_back(kind.define);
     for (const GpuShading& shading : kGpuShading) flags.push_back(shading.define);
-    for (const char* other : {"VKRAY_OBJECT_BVH", "VKRAY_DEBUG_PIXEL", "VKRAY_PRECISION_NAIVE",
+    for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_DEBUG_PIXEL", "VKRAY_PRECISION_NAIVE",
                               "VKRAY_PRECISION_FP64"})
         flags.push_back(other);
     return flags;
@@ -123,33 +126,36 @@ std::string describe(const ShaderFeatures& features) {
 
 std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
     // The same conditions as the #if around each binding in trace.comp and
-    // shapes/*.glsl (the test ShaderVariant.BindingsMatchTheSpirv checks).
-    std::vector<ShaderBinding> bindings{{BINDING_FRAME, "frame", true},
-                                        {BINDING_OBJECTS, "objects", false},
-                                        {BINDING_LIGHTS, "lights", false},
-                                        {BINDING_PIXELS, "pixels", false},
-                                        {BINDING_PROGRESS, "ray progress", false},
-                                        {BINDING_STATUS, "dispatch status", false}};
+    // the files it includes (the test ShaderVariant.BindingsMatchTheSpirv checks).
+    using enum BindingKind;
+    std::vector<ShaderBinding> bindings{{BINDING_FRAME, "frame", Uniform},
+                                        {BINDING_OBJECTS, "objects", Texels},
+                                        {BINDING_MATERIALS, "materials", Texels}};
+    if (features.lights || features.has(Shading::Shadows))
+        bindings.push_back({BINDING_LIGHTS, "lights", Texels});
+    bindings.push_back({BINDING_PIXELS, "pixels", Storage});
+    bindings.push_back({BINDING_PROGRESS, "ray progress", Storage});
+    bindings.push_back({BINDING_STATUS, "dispatch status", Storage});
     if (features.has(Shading::Reflection) || features.has(Shading::Refraction))
-        bindings.push_back({BINDING_RAY_STACK, "pending rays", false});
-    if (features.debugPixel) bindings.push_back({BINDING_DEBUG, "debug record", false});
+        bindings.push_back({BINDING_RAY_STACK, "pending rays", Storage});
+    if (features.debugPixel) bindings.push_back({BINDING_DEBUG, "debug record", Storage});
     if (features.objectBvh) {
-        bindings.push_back({BINDING_OBJECT_NODES, "object BVH nodes", false});
-        bindings.push_back({BINDING_OBJECT_INDEX, "object BVH index", false});
+        bindings.push_back({BINDING_OBJECT_NODES, "object BVH nodes", Texels});
+        bindings.push_back({BINDING_OBJECT_INDEX, "object BVH index", UintTexels});
     }
     if (features.kinds[KIND_MESH]) {
-        bindings.push_back({BINDING_MESHES, "meshes", false});
-        bindings.push_back({BINDING_MESH_NODES, "mesh BVH nodes", false});
-        bindings.push_back({BINDING_TRIANGLES, "triangles", false});
+        bindings.push_back({BINDING_MESHES, "meshes", Texels});
+        bindings.push_back({BINDING_MESH_NODES, "mesh BVH nodes", Texels});
+        bindings.push_back({BINDING_TRIANGLES, "triangles", Texels});
     }
-    if (features.kinds[KIND_BOOLEAN]) bindings.push_back({BINDING_CSG_NODES, "CSG nodes", false});
+    if (features.kinds[KIND_BOOLEAN]) bindings.push_back({BINDING_CSG_NODES, "CSG nodes", Texels});
     if (features.has(Shading::Pixmaps)) {
-        bindings.push_back({BINDING_PIXMAPS, "pixmaps", false});
-        bindings.push_back({BINDING_TEXELS, "texels", false});
+        bindings.push_back({BINDING_PIXMAPS, "pixmaps", Texels});
+        bindings.push_back({BINDING_TEXELS, "pixmap texels", UintTexels});
     }
     if (features.doubles) {
-        bindings.push_back({BINDING_DOUBLE_CAMERA, "camera in double", false});
-        bindings.push_back({BINDING_DOUBLE_OBJECTS, "objects' M^-1 in double", false});
+        bindings.push_back({BINDING_DOUBLE_CAMERA, "camera in double", Storage});
+        bindings.push_back({BINDING_DOUBLE_OBJECTS, "objects' M^-1 in double", Texels});
     }
     return bindings;
 }

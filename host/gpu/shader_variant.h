@@ -60,6 +60,7 @@ inline constexpr std::array<GpuShading, 6> kGpuShading{{
 struct ShaderFeatures {
     std::array<bool, kGpuKinds.size()> kinds{};      // indexed by KIND_*
     std::array<bool, kGpuShading.size()> shading{};  // indexed by Shading
+    bool lights = true;       // the scene has lights (without, no light code: VKRAY_LIGHTS 0)
     bool objectBvh = false;   // objects found through a BVH
     bool debugPixel = false;  // `vkray pixel`: the shader writes a trace record
     bool doubles = false;     // --precision fp64: camera and M^-1 read in double
@@ -78,7 +79,7 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
 Defines definesFor(const ShaderFeatures& features, const Defines& userDefines = {});
 
 // Every flag a variant defines, 0 or 1: the shapes, the shading features,
-// VKRAY_OBJECT_BVH, VKRAY_DEBUG_PIXEL and the precision modes' two. The one
+// VKRAY_LIGHTS, VKRAY_OBJECT_BVH, VKRAY_DEBUG_PIXEL and the precision modes' two. The one
 // list; shaders/variant_flags.glsl checks each is defined.
 std::vector<std::string> variantFlags();
 
@@ -86,12 +87,20 @@ std::vector<std::string> variantFlags();
 // ("+shadows+reflection", "+all shading"), "+bvh", "+debug-pixel" and "+fp64".
 std::string describe(const ShaderFeatures& features);
 
+// How the shader reads a binding (shaders/layout.h, "Descriptor bindings").
+enum class BindingKind {
+    Uniform,      // a uniform buffer
+    Storage,      // a storage buffer (what the shader writes, and the fp64 camera)
+    Texels,       // a read-only storage texel buffer, rgba32ui (uimageBuffer)
+    UintTexels,   // the same, r32ui
+};
+
 // One descriptor (set 0) a variant declares: the host creates and uploads a
 // buffer for exactly these, and nothing else.
 struct ShaderBinding {
     std::uint32_t binding;  // BINDING_* of shaders/layout.h
     const char* name;       // "objects", "mesh nodes", ...
-    bool uniform;           // uniform buffer (else storage buffer)
+    BindingKind kind;
 };
 std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features);
 

@@ -3,13 +3,16 @@
 // the lists; the hit is the first span end after tMin. Lists hold at most
 // CSG_MAX_SPANS spans and at most CSG_MAX_STACK lists are alive at once; the
 // host refuses trees that could need more (host/gpu/gpu_scene.cpp).
-layout(std430, set = 0, binding = BINDING_CSG_NODES) readonly buffer CsgBlock { GpuCsgNode csgNodes[]; };
+layout(set = 0, binding = BINDING_CSG_NODES, rgba32ui) uniform readonly uimageBuffer csgNodeTexels;
+
+// GpuCsgNode[index].node.
+uvec4 csgNode(uint index) { return imageLoad(csgNodeTexels, int(index)); }
 
 // One end of a span: where the ray crosses a primitive's surface.
 struct SpanEnd {
     real t;
     rvec3 normal;     // generic outward normal of `primitive`, negated when flipped
-    uint primitive;  // GpuObject index
+    uint primitive;  // object index
 };
 
 struct SpanList {
@@ -43,10 +46,10 @@ SpanList primitiveSpans(uint index, rvec3 origin, rvec3 direction) {
     list.count = 0u;
     rvec3 o, d;
     toObjectSpace(index, origin, direction, o, d);
-    GpuObject object = objects[index];
+    uvec4 shape = objectShape(index);
     real t0, t1;
     rvec3 n0, n1;
-    switch (object.shape.x) {
+    switch (shape.x) {
 #if VKRAY_SHAPE_SPHERE
     case KIND_SPHERE: if (sphereSpan(o, d, t0, n0, t1, n1)) addSpan(list, t0, n0, t1, n1, index); break;
 #endif
@@ -75,7 +78,7 @@ SpanList primitiveSpans(uint index, rvec3 origin, rvec3 direction) {
 #endif
 #if VKRAY_SHAPE_MESH
     case KIND_MESH:  // convex closed meshes only (the host checks): first and last crossing
-        if (meshSpan(object.shape.y, o, d, t0, n0, t1, n1)) addSpan(list, t0, n0, t1, n1, index);
+        if (meshSpan(shape.y, o, d, t0, n0, t1, n1)) addSpan(list, t0, n0, t1, n1, index);
         break;
 #endif
     default: break;
@@ -122,16 +125,16 @@ SpanList combine(uint op, SpanList a, SpanList b) {
 }
 
 // The nearest surface in (tMin, tMax) of the CSG tree whose post-order nodes
-// start at csgNodes[first] (that node's z holds the tree's node count),
+// start at GpuCsgNode `first` (that node's z holds the tree's node count),
 // evaluated with a stack of span lists.
 bool intersectCsg(uint first, rvec3 origin, rvec3 direction, real tMin, real tMax, out real t,
                   out rvec3 genericNormal, out uint primitive) {
     SpanList stack[CSG_MAX_STACK];
     uint top = 0u;
-    uint nodeCount = csgNodes[first].node.z;
+    uint nodeCount = csgNode(first).z;
     for (uint i = first; i < first + nodeCount; ++i) {
         ++loopTurns;
-        uvec4 node = csgNodes[i].node;
+        uvec4 node = csgNode(i);
         if (node.x == CSG_LEAF) {
             stack[top++] = primitiveSpans(node.y, origin, direction);
         } else {

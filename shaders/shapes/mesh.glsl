@@ -2,9 +2,20 @@
 // Triangles use the watertight test of Woop, Benthin and Wald (docs/numerics-background.md,
 // "Watertight triangles"): edge functions in a ray-aligned frame, so two triangles sharing
 // an edge see it with exactly opposite signs and no ray slips between them.
-layout(std430, set = 0, binding = BINDING_MESHES) readonly buffer MeshBlock { GpuMesh meshes[]; };
-layout(std430, set = 0, binding = BINDING_MESH_NODES) readonly buffer MeshNodeBlock { GpuBvhNode meshNodes[]; };
-layout(std430, set = 0, binding = BINDING_TRIANGLES) readonly buffer TriangleBlock { GpuTriangle triangles[]; };
+layout(set = 0, binding = BINDING_MESHES, rgba32ui) uniform readonly uimageBuffer meshTexels;
+layout(set = 0, binding = BINDING_MESH_NODES, rgba32ui) uniform readonly uimageBuffer meshNodeTexels;
+layout(set = 0, binding = BINDING_TRIANGLES, rgba32ui) uniform readonly uimageBuffer triangleTexels;
+
+GpuMesh meshOf(uint index) { return GpuMesh(imageLoad(meshTexels, int(index))); }
+GpuBvhNode meshNode(uint index) { return BVH_NODE(meshNodeTexels, index); }
+
+// Corner k (0..2) of triangle `index`: its position, or (normal) its normal.
+vec3 triangleCorner(uint index, uint k) {
+    return texelAsVec4(imageLoad(triangleTexels, int(index * TRIANGLE_TEXELS + k))).xyz;
+}
+vec3 triangleNormal(uint index, uint k) {
+    return texelAsVec4(imageLoad(triangleTexels, int(index * TRIANGLE_TEXELS + 3u + k))).xyz;
+}
 
 // The ray in the frame where it runs along +z (per ray, shared by all triangles).
 struct ShearedRay {
@@ -50,57 +61,83 @@ bool intersectTriangle(ShearedRay r, rvec3 p0, rvec3 p1, rvec3 p2, real tMin, re
 // normal and the triangle's own (geometric) one, unnormalised.
 bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real t, out rvec3 normal,
                    out rvec3 geometricNormal) {
-    GpuMesh mesh = meshes[index];
+    GpuMesh mesh = meshOf(index);
     ShearedRay sheared = shearRay(o, d);
     rvec3 invD = 1.0 / d;
     bool found = false;
+    uint nearest = 0u;  // the triangle of the closest hit so far
+    rvec3 nearestBarycentric = rvec3(0.0);
     t = tMax;
-    uint stack[BVH_STACK_SIZE];
+    uint stack[BVH_STACK_SIZE];  // as in walkScene (trace.comp)
     real stackEnter[BVH_STACK_SIZE];
     uint top = 0u;
-    uint node = 0u;
     real enter;
-    GpuBvhNode root = meshNodes[mesh.range.x];
-    bool walking = hitsBox(root.lo.xyz, root.hi.xyz, o, invD, tMin, t, enter);
-    while (walking) {
-        ++loopTurns;
-        GpuBvhNode n = meshNodes[mesh.range.x + node];
-        uint count = floatBitsToUint(n.hi.w), first = floatBitsToUint(n.lo.w);
-        if (count == 0u) {
-            uint nearIndex, farIndex;
+    GpuBvhNode root = meshNode(mesh.range.x);
+    if (hitsBox(root.lo.xyz, root.hi.xyz, o, invD, tMin, t, enter)) {
+        stack[0] = bvhNodeCode(root);
+        stackEnter[0] = enter;
+        top = 1u;
+    }
+    uint leafFirst = 0u, leafCount = 0u;
+    while (true) {
+        loopTurns += leafCount;
+        for (uint i = mesh.range.y + leafFirst; i < mesh.range.y + leafFirst + leafCount; ++i) {
+            real tHit;
+            rvec3 bary;
+            if (intersectTriangle(sheared, triangleCorner(i, 0u), triangleCorner(i, 1u),
+                                  triangleCorner(i, 2u), tMin, t, tHit, bary)) {
+                t = tHit;
+                nearest = i;
+                nearestBarycentric = bary;
+                found = true;
+            }
+        }
+        leafCount = 0u;
+        bool walking = false;
+        uint children = 0u;
+        while (true) {
+            ++loopTurns;
+            if (!walking) {
+                bool kept = false;
+                uint code = 0u;
+                while (top > 0u && !kept) {
+                    --top;
+                    kept = stackEnter[top] <= t;
+                    code = stack[top];
+                }
+                if (!kept) break;
+                if ((code & 7u) != 0u) {
+                    leafFirst = code >> 3u;
+                    leafCount = code & 7u;
+                    break;
+                }
+                children = code >> 3u;
+            }
+            uint nearCode, farCode;
             real farEnter;
-            int hits = orderChildren(meshNodes[mesh.range.x + node + 1u], node + 1u,
-                                     meshNodes[mesh.range.x + first], first, o, invD, tMin, t,
-                                     nearIndex, farIndex, farEnter);
+            int hits = orderChildren(meshNode(mesh.range.x + children), meshNode(mesh.range.x + children + 1u),
+                                     o, invD, tMin, t, nearCode, farCode, farEnter);
             if (hits == 2) {
-                stack[top] = farIndex;
+                stack[top] = farCode;
                 stackEnter[top++] = farEnter;
             }
-            if (hits > 0) {
-                node = nearIndex;
-                continue;
-            }
-        } else {
-            loopTurns += count;
-            for (uint i = first; i < first + count; ++i) {
-                GpuTriangle tri = triangles[mesh.range.y + i];
-                real tHit;
-                rvec3 bary;
-                if (intersectTriangle(sheared, tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, tMin, t, tHit, bary)) {
-                    t = tHit;
-                    normal = bary.x * tri.n0.xyz + bary.y * tri.n1.xyz + bary.z * tri.n2.xyz;
-                    geometricNormal = cross(tri.p1.xyz - tri.p0.xyz, tri.p2.xyz - tri.p0.xyz);
-                    found = true;
-                }
+            walking = hits > 0 && (nearCode & 7u) == 0u;
+            children = nearCode >> 3u;
+            if (hits > 0 && !walking) {
+                leafFirst = nearCode >> 3u;
+                leafCount = nearCode & 7u;
+                break;
             }
         }
-        walking = false;
-        while (top > 0u && !walking) {
-            ++loopTurns;
-            --top;
-            walking = stackEnter[top] <= t;
-            node = stack[top];
-        }
+        if (leafCount == 0u) break;
+    }
+    // The normals of the nearest triangle only (read once, not at every closer hit).
+    if (found) {
+        rvec3 bary = nearestBarycentric;
+        normal = bary.x * triangleNormal(nearest, 0u) + bary.y * triangleNormal(nearest, 1u) +
+                 bary.z * triangleNormal(nearest, 2u);
+        vec3 p0 = triangleCorner(nearest, 0u);
+        geometricNormal = cross(triangleCorner(nearest, 1u) - p0, triangleCorner(nearest, 2u) - p0);
     }
     return found;
 }
@@ -108,40 +145,38 @@ bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real 
 // A convex closed mesh as a solid (CSG): the first and last crossing of the
 // whole line, with their normals.
 bool meshSpan(uint index, rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real t1, out rvec3 n1) {
-    GpuMesh mesh = meshes[index];
+    GpuMesh mesh = meshOf(index);
     ShearedRay sheared = shearRay(o, d);
     rvec3 invD = 1.0 / d;
     const real INF = 1.0 / 0.0;
-    uint stack[BVH_STACK_SIZE];
+    uint stack[BVH_STACK_SIZE];  // nodes the line crosses (bvhNodeCode)
     uint top = 0u;
-    uint node = 0u;
     t0 = INF;
     t1 = -INF;
-    while (true) {
+    real enter;
+    GpuBvhNode root = meshNode(mesh.range.x);
+    if (hitsBox(root.lo.xyz, root.hi.xyz, o, invD, -INF, INF, enter)) stack[top++] = bvhNodeCode(root);
+    while (top > 0u) {
         ++loopTurns;
-        GpuBvhNode n = meshNodes[mesh.range.x + node];
-        real enter;
-        if (hitsBox(n.lo.xyz, n.hi.xyz, o, invD, -INF, INF, enter)) {
-            uint count = floatBitsToUint(n.hi.w), first = floatBitsToUint(n.lo.w);
-            if (count == 0u) {
-                stack[top++] = first;
-                node = node + 1u;
-                continue;
-            }
-            for (uint i = first; i < first + count; ++i) {
-                ++loopTurns;
-                GpuTriangle tri = triangles[mesh.range.y + i];
-                real t;
-                rvec3 bary;
-                if (!intersectTriangle(sheared, tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, -INF, INF, t, bary))
-                    continue;
-                rvec3 normal = bary.x * tri.n0.xyz + bary.y * tri.n1.xyz + bary.z * tri.n2.xyz;
-                if (t < t0) { t0 = t; n0 = normal; }
-                if (t > t1) { t1 = t; n1 = normal; }
-            }
+        uint code = stack[--top], first = code >> 3u, count = code & 7u;
+        if (count == 0u) {
+            GpuBvhNode a = meshNode(mesh.range.x + first), b = meshNode(mesh.range.x + first + 1u);
+            if (hitsBox(a.lo.xyz, a.hi.xyz, o, invD, -INF, INF, enter)) stack[top++] = bvhNodeCode(a);
+            if (hitsBox(b.lo.xyz, b.hi.xyz, o, invD, -INF, INF, enter)) stack[top++] = bvhNodeCode(b);
+            continue;
         }
-        if (top == 0u) break;
-        node = stack[--top];
+        for (uint i = mesh.range.y + first; i < mesh.range.y + first + count; ++i) {
+            ++loopTurns;
+            real t;
+            rvec3 bary;
+            if (!intersectTriangle(sheared, triangleCorner(i, 0u), triangleCorner(i, 1u),
+                                   triangleCorner(i, 2u), -INF, INF, t, bary))
+                continue;
+            rvec3 normal = bary.x * triangleNormal(i, 0u) + bary.y * triangleNormal(i, 1u) +
+                           bary.z * triangleNormal(i, 2u);
+            if (t < t0) { t0 = t; n0 = normal; }
+            if (t > t1) { t1 = t; n1 = normal; }
+        }
     }
     return t0 <= t1;
 }

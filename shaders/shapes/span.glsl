@@ -32,20 +32,24 @@ bool hitsBox(rvec3 lo, rvec3 hi, rvec3 o, rvec3 invD, real tMin, real tMax, out 
     return enter <= exit + abs(exit) * 3.6e-7;
 }
 
+// A BVH node as a walk's stack keeps it: first * 8 + count (layout.h, GpuBvhNode).
+uint bvhNodeCode(GpuBvhNode n) { return (floatBitsToUint(n.lo.w) << 3u) | floatBitsToUint(n.hi.w); }
+
 // Front-to-back BVH walks (trace.comp over objects, mesh.glsl over
-// triangles) share this step: at an interior node, which children the ray
-// enters within [tMin, tMax], the nearer first. Returns how many (0, 1, 2);
-// with 2 the far one is to be kept on the stack with its entry t. (Scalars
-// only: passing the walk's stack in and out of a function would copy it.)
-int orderChildren(GpuBvhNode a, uint indexA, GpuBvhNode b, uint indexB, rvec3 o, rvec3 invD,
-                  real tMin, real tMax, out uint nearIndex, out uint farIndex,
-                  out real farEnter) {
+// triangles) share this step: at an interior node, which of its children a
+// and b the ray enters within [tMin, tMax], the nearer first. Returns how
+// many (0, 1, 2), with their codes (bvhNodeCode); with 2 the far one is to be
+// kept on the stack with its entry t. (Scalars only: passing the walk's
+// stack in and out of a function would copy it.)
+int orderChildren(GpuBvhNode a, GpuBvhNode b, rvec3 o, rvec3 invD, real tMin, real tMax,
+                  out uint nearCode, out uint farCode, out real farEnter) {
     real enterA, enterB;
     bool hitA = hitsBox(a.lo.xyz, a.hi.xyz, o, invD, tMin, tMax, enterA);
     bool hitB = hitsBox(b.lo.xyz, b.hi.xyz, o, invD, tMin, tMax, enterB);
     bool aFirst = hitA && (!hitB || enterA <= enterB);
-    nearIndex = aFirst ? indexA : indexB;
-    farIndex = aFirst ? indexB : indexA;
+    uint codeA = bvhNodeCode(a), codeB = bvhNodeCode(b);
+    nearCode = aFirst ? codeA : codeB;
+    farCode = aFirst ? codeB : codeA;
     farEnter = aFirst ? enterB : enterA;
     return int(hitA) + int(hitB);
 }

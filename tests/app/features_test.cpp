@@ -53,12 +53,14 @@ TEST_F(Features, DefaultSceneReport) {
     EXPECT_EQ(field(run.output, "variant"), "sphere+plane+square+cube+shadows");
     EXPECT_EQ(field(run.output, "defines"),
               "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_SQUARE=1 VKRAY_SHAPE_CUBE=1 "
-              "VKRAY_SHADOWS=1 (every other variant flag 0)");
-    // GpuObject is 10 vec4 (160 bytes), GpuLight 2 (32), FrameParams 9 (144).
+              "VKRAY_SHADOWS=1 VKRAY_LIGHTS=1 (every other variant flag 0)");
+    // GpuObjectGeometry is 4 vec4 (64 bytes), GpuMaterial 6 (96), GpuLight 2
+    // (32), FrameParams 9 (144).
     const std::vector<std::string> expected{
         "0 frame uniform 144 bytes",
-        "1 objects storage 800 bytes (5 x 160)",
-        "2 lights storage 96 bytes (3 x 32)",
+        "1 objects texels 320 bytes (5 x 64)",
+        "18 materials texels 480 bytes (5 x 96)",
+        "2 lights texels 96 bytes (3 x 32)",
         "3 pixels storage one tile of 32-byte pixels",
         "15 ray progress storage one tile of 32-byte ray states",
         "16 dispatch status storage 16 bytes",
@@ -76,17 +78,19 @@ TEST_F(Features, MeshSceneBindsMeshAndBvhBuffers) {
     EXPECT_EQ(field(run.output, "variant"), "sphere+plane+mesh+shadows+bvh");
     EXPECT_EQ(field(run.output, "defines"),
               "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_MESH=1 VKRAY_SHADOWS=1 "
-              "VKRAY_OBJECT_BVH=1 (every other variant flag 0)");
+              "VKRAY_LIGHTS=1 VKRAY_OBJECT_BVH=1 (every other variant flag 0)");
     const std::vector<std::string> lines = buffers(run.output);
     std::vector<std::string> bound;
-    for (const std::string& line : lines) bound.push_back(line.substr(0, line.find(" storage")));
-    const std::vector<std::string> expected{"0 frame uniform 144 bytes", "1 objects", "2 lights",
+    for (const std::string& line : lines)
+        bound.push_back(line.substr(0, std::min(line.find(" storage"), line.find(" texels"))));
+    const std::vector<std::string> expected{"0 frame uniform 144 bytes", "1 objects",
+                                            "18 materials", "2 lights",
                                             "3 pixels", "15 ray progress", "16 dispatch status",
                                             "5 object BVH nodes", "6 object BVH index",
                                             "7 meshes", "8 mesh BVH nodes", "9 triangles"};
     EXPECT_EQ(bound, expected) << run.output;
     // 10 balls + mesh + extrusion in the BVH's index, then the plane.
-    EXPECT_NE(std::find(lines.begin(), lines.end(), "6 object BVH index storage 52 bytes (13 x 4)"),
+    EXPECT_NE(std::find(lines.begin(), lines.end(), "6 object BVH index texels 52 bytes (13 x 4)"),
               lines.end())
         << run.output;
 }
@@ -99,17 +103,17 @@ TEST_F(Features, VariantAllCompilesEveryFeatureAndBindsTheirBuffers) {
               "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_SQUARE=1 VKRAY_SHAPE_CUBE=1 "
               "VKRAY_SHAPE_TAPERED_CYLINDER=1 VKRAY_SHAPE_TORUS=1 VKRAY_SHAPE_MESH=1 VKRAY_CSG=1 "
               "VKRAY_SHADOWS=1 VKRAY_REFLECTION=1 VKRAY_REFRACTION=1 VKRAY_TEXTURES=1 "
-              "VKRAY_PIXMAPS=1 VKRAY_ANTIALIAS=1 EXTRA=2 (every other variant flag 0)");
+              "VKRAY_PIXMAPS=1 VKRAY_ANTIALIAS=1 VKRAY_LIGHTS=1 EXTRA=2 (every other variant flag 0)");
     // The scene's own needs are still reported as the scene's.
     EXPECT_EQ(field(run.output, "reflection").substr(0, 3), "no ") << run.output;
     // The pending rays (maxRecursionDepth 3 + 1 entries), the mesh, CSG and
     // pixmap arrays are bound (empty: one element, as Vulkan wants).
     const std::vector<std::string> lines = buffers(run.output);
-    ASSERT_EQ(lines.size(), 13u) << run.output;
-    EXPECT_EQ(lines[6], "17 pending rays storage one tile of 4-entry stacks of 64-byte rays");
-    EXPECT_EQ(lines[9], "9 triangles storage empty (one 96-byte element: Vulkan has no empty buffers)");
-    EXPECT_EQ(lines[10], "10 CSG nodes storage empty (one 16-byte element: Vulkan has no empty buffers)");
-    EXPECT_EQ(lines[12], "12 texels storage empty (one 4-byte element: Vulkan has no empty buffers)");
+    ASSERT_EQ(lines.size(), 14u) << run.output;
+    EXPECT_EQ(lines[7], "17 pending rays storage one tile of 4-entry stacks of 64-byte rays");
+    EXPECT_EQ(lines[10], "9 triangles texels empty (one 96-byte element: Vulkan has no empty buffers)");
+    EXPECT_EQ(lines[11], "10 CSG nodes texels empty (one 16-byte element: Vulkan has no empty buffers)");
+    EXPECT_EQ(lines[13], "12 pixmap texels texels empty (one 4-byte element: Vulkan has no empty buffers)");
 }
 
 TEST_F(Features, SecondaryRaysFollowLightsThresholdsAndDepth) {

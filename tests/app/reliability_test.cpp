@@ -56,39 +56,37 @@ void expectOnly(const fs::path& dir, std::set<std::string> names) {
 
 // ---- limits of the device ----------------------------------------------------
 
-TEST_F(Reliability, ObjectsBeyondTheStorageBufferLimitAreRefusedBeforeAllocating) {
+TEST_F(Reliability, ObjectsBeyondTheTexelBufferLimitAreRefusedBeforeAllocating) {
+    // 100 objects of 4 texels (GpuObjectGeometry) are 400 texels; 256 allowed.
     const std::string s = scene("s.sdl", spheres(100));
     RunResult run = vkray("render " + s + " -o " + path("out.png") + " --size 32x24",
-                          "VKRAY_MAX_BUFFER_BYTES=4096");
+                          "VKRAY_MAX_TEXELS=256");
     EXPECT_EQ(run.status, 1) << run.output;
-    const std::size_t objectBytes = sizeof(vkray::gpu::GpuObject);
-    EXPECT_NE(run.output.find("vkray: error: the scene's 100 objects need " +
-                              std::to_string(100 * objectBytes) + " bytes in one storage buffer; "),
+    EXPECT_NE(run.output.find("vkray: error: the scene's 100 objects need 400 texels in one "
+                              "texel buffer; "),
               std::string::npos)
         << run.output;
-    EXPECT_NE(run.output.find("allows at most 4096 bytes (maxStorageBufferRange), room for " +
-                              std::to_string(4096 / objectBytes) +
-                              " objects. Use fewer objects, or render with --cpu"),
+    EXPECT_NE(run.output.find("allows at most 256 (maxTexelBufferElements), room for 64 objects. "
+                              "Use fewer objects, or render with --cpu"),
               std::string::npos)
         << run.output;
     expectNoOutputs();
     // The advice holds: the CPU reference has no such limit.
     RunResult cpu = vkray("render " + s + " --cpu -o " + path("out.png") + " --size 32x24",
-                          "VKRAY_MAX_BUFFER_BYTES=4096");
+                          "VKRAY_MAX_TEXELS=256");
     EXPECT_EQ(cpu.status, 0) << cpu.output;
 }
 
-TEST_F(Reliability, TrianglesBeyondTheStorageBufferLimitNameTheTriangles) {
-    // The teapot: 16256 triangles of 96 bytes (and 16325 BVH nodes of 32, which fit).
+TEST_F(Reliability, TrianglesBeyondTheTexelBufferLimitNameTheTriangles) {
+    // The teapot: 16256 triangles of 6 texels (and 16325 BVH nodes of 2, which fit).
     const std::string s = scene("s.sdl", "camera eye 0 0 5\nlight 5 5 5 1 1 1\nteapot\n");
     RunResult run = vkray("render " + s + " -o " + path("out.png") + " --size 32x24",
-                          "VKRAY_MAX_BUFFER_BYTES=600000");
+                          "VKRAY_MAX_TEXELS=60000");
     EXPECT_EQ(run.status, 1) << run.output;
-    EXPECT_NE(run.output.find("the scene's 16256 triangles need 1560576 bytes (1.5 MiB) in one "
-                              "storage buffer"),
+    EXPECT_NE(run.output.find("the scene's 16256 triangles need 97536 texels in one texel buffer"),
               std::string::npos)
         << run.output;
-    EXPECT_NE(run.output.find("room for 6250 triangles. Use fewer or smaller meshes, or render "
+    EXPECT_NE(run.output.find("room for 10000 triangles. Use fewer or smaller meshes, or render "
                               "with --cpu"),
               std::string::npos)
         << run.output;

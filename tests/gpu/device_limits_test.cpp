@@ -17,6 +17,7 @@ DeviceLimits smallDevice() {
     limits.deviceName = "tiny GPU";
     limits.maxStorageBufferRange = 1 << 20;  // 1 MiB
     limits.maxUniformBufferRange = 16384;
+    limits.maxTexelBufferElements = 65536;  // Vulkan's least
     limits.maxMemoryAllocationSize = 1 << 30;
     limits.memoryHeapBytes = 8 << 20;        // 8 MiB
     limits.maxWorkgroupCount[0] = limits.maxWorkgroupCount[1] = 65535;
@@ -35,6 +36,21 @@ std::string refusal(const std::vector<BufferNeed>& needs, const DeviceLimits& li
 TEST(DeviceLimits, BufferWithinItsRangeIsAccepted) {
     EXPECT_NO_THROW(checkBufferNeeds({{"triangles", 10922, 96, false, "Use smaller meshes"}},
                                      smallDevice()));  // 1048512 bytes <= 1 MiB
+}
+
+// 10 923 triangles of 6 texels are 65 538 texels, two more than the view
+// allows; the storage range is raised so that only the texel count refuses.
+TEST(DeviceLimits, TexelBufferBeyondItsElementsNamesCountLimitAndAdvice) {
+    DeviceLimits limits = smallDevice();
+    limits.maxStorageBufferRange = 1 << 30;
+    const BufferNeed within{"triangles", 10922, 96, false, "Use smaller meshes", 16};
+    const BufferNeed beyond{"triangles", 10923, 96, false, "Use smaller meshes", 16};
+    EXPECT_NO_THROW(checkBufferNeeds({within}, limits));  // 65 532 texels
+    const std::string message = refusal({beyond}, limits);
+    EXPECT_NE(message.find("10923 triangles need 65538 texels"), std::string::npos) << message;
+    EXPECT_NE(message.find("at most 65536 (maxTexelBufferElements), room for 10922 triangles"),
+              std::string::npos) << message;
+    EXPECT_NE(message.find("Use smaller meshes, or render with --cpu"), std::string::npos) << message;
 }
 
 TEST(DeviceLimits, StorageBufferBeyondItsRangeNamesCountLimitAndAdvice) {

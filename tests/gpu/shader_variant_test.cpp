@@ -2,6 +2,7 @@
 // Whitted shading it can use (no device needed; compiling them is
 // `vkray shaders check`, in tests/app/shader_dev_test.cpp).
 #include "gpu/shader_variant.h"
+#include "shaders/layout.h"
 
 #include "scene/sdl_reader.h"
 
@@ -17,11 +18,11 @@
 namespace vkray::gpu {
 namespace {
 
-ShaderFeatures featuresOfText(const std::string& sdl, int spp = 1) {
+ShaderFeatures featuresOfText(const std::string& sdl, int spp = 1, bool allFeatures = false) {
     const Scene scene = parseSdl(sdl, "t.sdl", {});
     RenderSettings settings;
     settings.spp = spp;
-    return featuresOf(scene, settings, false);
+    return featuresOf(scene, settings, allFeatures);
 }
 
 // Every shader source, by path.
@@ -111,6 +112,25 @@ TEST(ShaderVariant, ShadowsWhereAFeelerCanMeetAnObject) {
     EXPECT_TRUE(featuresOfText("light 1 2 3 1 1 1 cube").has(Shading::Shadows));
     EXPECT_TRUE(featuresOfText("light 1 2 3 1 1 1 torus").has(Shading::Shadows));
     EXPECT_TRUE(hasDefine(featuresOfText("light 1 2 3 1 1 1 sphere cube"), "VKRAY_SHADOWS"));
+}
+
+// A scene without lights has no light code and binds no lights; a lit
+// lone plane has the light code but no feelers.
+TEST(ShaderVariant, LightCodeOnlyWhereTheSceneHasLights) {
+    const auto bindsLights = [](const ShaderFeatures& f) {
+        const std::vector<ShaderBinding> bindings = bindingsFor(f);
+        return std::any_of(bindings.begin(), bindings.end(),
+                           [](const ShaderBinding& b) { return b.binding == BINDING_LIGHTS; });
+    };
+    const ShaderFeatures unlit = featuresOfText("sphere cube");
+    EXPECT_FALSE(unlit.lights);
+    EXPECT_FALSE(hasDefine(unlit, "VKRAY_LIGHTS"));
+    EXPECT_FALSE(bindsLights(unlit));
+    const ShaderFeatures plane = featuresOfText("light 1 2 3 1 1 1 plane");
+    EXPECT_TRUE(hasDefine(plane, "VKRAY_LIGHTS"));
+    EXPECT_FALSE(hasDefine(plane, "VKRAY_SHADOWS"));
+    EXPECT_TRUE(bindsLights(plane));
+    EXPECT_TRUE(hasDefine(featuresOfText("sphere cube", 1, true), "VKRAY_LIGHTS"));
 }
 
 TEST(ShaderVariant, SecondaryRaysAboveTheirThresholdsWithRecursion) {
