@@ -1,4 +1,4 @@
-// vkray's benchmark harness (issue #7): primary rays per second on the same
+// vkray's benchmark harness: primary rays per second on the same
 // scenes, rays and cores for
 //   - the GPU tracer (lavapipe here) with the scene's specialised variant,
 //   - the same with the all-features variant,
@@ -286,7 +286,7 @@ void printTable(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
     }
 }
 
-// The aims of issue #7, from one table's figures.
+// The aims, from one table's figures.
 void printAims(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
     const char* unit = cpuTime ? "per CPU-second" : "wall clock";
     double minSphere = 1e30, maxSphere = 0, minAll = 1e30, bestEmbree = 0, worstEmbree = 1e30;
@@ -560,7 +560,7 @@ int main(int argc, char** argv) {
         for (const Row& r : rows)
             std::printf("| %s | %s | %s | %s |\n", r.description.c_str(), r.idsGpu.c_str(),
                         r.idsEmbree.c_str(), r.builds.c_str());
-        std::printf("\nAims of issue #7 (GPU/Embree against the faster Embree column):\n");
+        std::printf("\nAims (GPU/Embree against the faster Embree column):\n");
         printAims(rows, rays, false);
         printAims(rows, rays, true);
         std::fflush(stdout);

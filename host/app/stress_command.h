@@ -1,4 +1,4 @@
-// `vkray stress` and `vkray report SCENE` (issue #6): precision modes against
+// `vkray stress` and `vkray report SCENE`: precision modes against
 // the long-double oracle over scenes/stress/, and error against run time over
 // the knobs that trade them for one scene. Both print a table and write CSV,
 // JSON and a self-contained HTML page with SVG plots. `stress` exits 2 when a

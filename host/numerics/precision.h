@@ -1,4 +1,4 @@
-// Precision modes (issue #6): how much care the GPU renderer takes with
+// Precision modes: how much care the GPU renderer takes with
 // float arithmetic. Each mode is a set of shader defines plus what the host
 // does to the scene, in double, before it is rounded to float:
 //

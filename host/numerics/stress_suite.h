@@ -1,4 +1,4 @@
-// The stress suite (issue #6): every scene of scenes/stress/ rendered in each
+// The stress suite: every scene of scenes/stress/ rendered in each
 // precision mode and compared pixel by pixel with the long-double oracle.
 //
 // Metrics, per case and mode (docs/numerics.md says how to read them):
