@@ -150,12 +150,16 @@ std::pair<int, int> pngSize(const std::string& png) {
 
 // Pictures smaller than this are shown enlarged by a whole factor (pixels stay square).
 constexpr int kLeastShownWidth = 160;
+constexpr double kColourScaleWidth = 180;  // colourScaleSvg's
 
 std::string figureHtml(const Figure& figure) {
     const auto [width, height] = pngSize(figure.png);
     const int zoom = width > 0 && width < kLeastShownWidth ? (kLeastShownWidth + width - 1) / width : 1;
+    // The figure as wide as its picture (or its colour scale), so that a long
+    // caption wraps under the picture instead of widening it.
+    const int shown = std::max(width * zoom, figure.scale ? int(kColourScaleWidth) : 0);
     std::ostringstream h;
-    h << "<figure><img src=\"data:image/png;base64," << base64(figure.png) << "\" width=\""
+    h << "<figure style=\"width: " << shown << "px\"><img src=\"data:image/png;base64," << base64(figure.png) << "\" width=\""
       << width * zoom << "\" height=\"" << height * zoom << "\" alt=\"" << xml(figure.caption)
       << "\"/><figcaption>" << xml(figure.caption) << "</figcaption>";
     if (figure.scale) h << colourScaleSvg(*figure.scale, figure.scaleLabel);
@@ -354,14 +358,15 @@ std::string toSvg(const Plot& plot) {
     }
     s << labels;
     // The legend: a line per series, then the hollow red points' meaning and
-    // the front, as far as they are on the plot; a line holds ~24 characters.
+    // the front, as far as they are on the plot.
+    constexpr size_t kLegendLine = 20;  // characters: 134 pixels at 11 px sans-serif
     const double legendX = W - legendWidth + 8, lineHeight = 15, lastLine = H - bottom;
     double y = top + 10;
     s << "<g class=\"legend\">\n<text x=\"" << legendX << "\" y=\"" << y
       << "\" font-weight=\"bold\">legend</text>\n";
     y += lineHeight;
     const auto entry = [&](const std::string& mark, const std::string& text) {
-        const std::vector<std::string> lines = wrapped(text, 24);
+        const std::vector<std::string> lines = wrapped(text, kLegendLine);
         s << mark;
         for (size_t k = 0; k < lines.size(); ++k)
             s << "<text x=\"" << legendX + 18 << "\" y=\"" << y + 4 + lineHeight * double(k) << "\">"
@@ -371,7 +376,7 @@ std::string toSvg(const Plot& plot) {
     const bool anyFlagged = std::any_of(plot.points.begin(), plot.points.end(), [](const PlotPoint& p) { return p.flagged; });
     // Lines left for the series once the other entries have theirs.
     const long room = long((lastLine - y) / lineHeight) -
-                      (anyFlagged ? long(wrapped(plot.flaggedMeaning, 24).size()) : 0) - (front.empty() ? 0 : 1);
+                      (anyFlagged ? long(wrapped(plot.flaggedMeaning, kLegendLine).size()) : 0) - (front.empty() ? 0 : 1);
     for (size_t k = 0; k < series.size(); ++k) {
         if (long(k) + 1 >= room && long(series.size()) > room) {
             entry("", "... and " + std::to_string(series.size() - k) + " more (hover a point)");
@@ -395,7 +400,7 @@ std::string toSvg(const Plot& plot) {
 }
 
 std::string colourScaleSvg(const HeatScale& scale, const std::string& label) {
-    constexpr double W = 180, H = 46, x0 = 12, x1 = W - 12, barTop = 4, barHeight = 12;
+    constexpr double W = kColourScaleWidth, H = 46, x0 = 18, x1 = W - 10, barTop = 4, barHeight = 12;
     constexpr int steps = 60;
     std::ostringstream s;
     s << "<svg class=\"scale\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
@@ -447,7 +452,7 @@ std::string toHtml(const Report& report) {
       << ".group { border: 1px solid #ccc; padding: 6px 8px; }\n"
       << ".group h3 { margin: 0 0 2px 0; font-size: 14px; }\n"
       << ".note { margin: 0 0 6px 0; font-size: 12px; color: #555; }\n"
-      << ".figures { display: flex; gap: 8px; align-items: flex-start; }\n"
+      << ".figures { display: flex; flex-wrap: wrap; gap: 8px; align-items: flex-start; }\n"
       << "figure { margin: 0; } figcaption { font-size: 12px; }\n"
       << "figure img { display: block; image-rendering: pixelated; border: 1px solid #888; }\n"
       << ".legend { margin: 0.5em 0 1em 0; font-size: 13px; }\n"

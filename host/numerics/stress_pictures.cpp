@@ -2,6 +2,7 @@
 
 #include "dist/bytes.h"
 #include "image/image_io.h"
+#include "image/pictures.h"
 #include "scene/error.h"
 
 #include <algorithm>
@@ -17,6 +18,13 @@ void paint(Image& image, std::size_t pixel, glm::vec3 colour) {
 
 std::string count(std::size_t n, const char* one, const char* many) {
     return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// The marks by priority: where a shrunk pixel covers several, the largest shows.
+constexpr float kNoMark = 0, kAcne = 1, kWrongId = 2, kFlip = 3;
+
+int pictureFactor(int width) {
+    return shrinkFactorFor(Image{width, 1, 1, {}}, kStressPictureWidth);
 }
 
 }  // namespace
@@ -47,27 +55,38 @@ ModePicture markedPicture(const std::string& mode, const Frame& frame,
     for (float& v : image.pixels) v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
     ModePicture picture;
     picture.mode = mode;
+    Image marks{frame.width, frame.height, 1, std::vector<float>(frame.pixelCount(), kNoMark)};
+    for (const std::size_t i : acnePixels) {
+        marks.pixels.at(i) = kAcne;
+        ++picture.acne;
+    }
     for (std::size_t i = 0; i < oracle.size(); ++i) {
         const PixelVerdict verdict = classifyPixel(oracle[i], samples[i], band);
         if (verdict == PixelVerdict::Flip) {
-            paint(image, i, kFlipMark);
+            marks.pixels[i] = kFlip;
             ++picture.flips;
         } else if (verdict == PixelVerdict::WrongId) {
-            paint(image, i, kWrongIdMark);
+            marks.pixels[i] = kWrongId;
             ++picture.wrongIds;
         }
     }
-    for (const std::size_t i : acnePixels) {
-        paint(image, i, kAcneMark);
-        ++picture.acne;
-    }
+    const int factor = pictureFactor(frame.width);
+    image = shrink(image, factor, Shrink::Average);
+    marks = shrink(marks, factor, Shrink::Largest);
+    const glm::vec3 colours[] = {{}, kAcneMark, kWrongIdMark, kFlipMark};
+    for (std::size_t i = 0; i < marks.pixels.size(); ++i)
+        if (marks.pixels[i] != kNoMark) paint(image, i, colours[int(marks.pixels[i])]);
     picture.png = pngBytes(image);
     return picture;
 }
 
+std::string oraclePng(const Scene& scene, const std::vector<OraclePixel>& oracle, int width, int height) {
+    return pngBytes(shrink(oraclePicture(scene, oracle, width, height), pictureFactor(width), Shrink::Average));
+}
+
 std::string encodePicture(const StressPicture& picture) {
     dist::ByteWriter writer;
-    writer << picture.caseName << picture.oraclePng << std::uint64_t(picture.modes.size());
+    writer << picture.caseName << picture.oraclePng << picture.shrunkBy << std::uint64_t(picture.modes.size());
     for (const ModePicture& m : picture.modes)
         writer << m.mode << m.png << std::uint64_t(m.flips) << std::uint64_t(m.wrongIds) << std::uint64_t(m.acne);
     return writer.bytes();
@@ -77,7 +96,7 @@ StressPicture decodePicture(const std::string& bytes) {
     dist::ByteReader reader(bytes);
     StressPicture picture;
     std::uint64_t modes = 0;
-    reader >> picture.caseName >> picture.oraclePng >> modes;
+    reader >> picture.caseName >> picture.oraclePng >> picture.shrunkBy >> modes;
     if (modes > bytes.size()) throw Error("MPI: a case's pictures came back garbled");
     picture.modes.resize(modes);
     for (ModePicture& m : picture.modes) {
@@ -97,13 +116,18 @@ void addStressPictures(Report& report, const std::vector<StressPicture>& picture
         "For each case: the oracle's view (the object each exact ray hits in its diffuse colour, "
         "darker as the surface turns from the ray; the oracle traces no lights), then the image "
         "each GPU mode rendered, with the pixels where that mode is wrong painted over. Silhouette "
-        "pixels (left out of the metrics) are not marked. A mode that did not run has no picture."};
+        "pixels (left out of the metrics) are not marked. A mode that did not run has no picture. "
+        "Pictures wider than " + std::to_string(kStressPictureWidth) + " pixels are shown shrunk "
+        "(the caption says by how much): a shown pixel is the mean of those it covers, or marked "
+        "when any of them is (a flip before a wrong id before acne); the counts are the full "
+        "image's."};
     gallery.legend = {{hexColour(kFlipMark), "flip: hit where the oracle misses, or miss where it hits"},
                       {hexColour(kWrongIdMark), "wrong id: another object than the oracle's"},
                       {hexColour(kAcneMark), "acne: a shadow feeler (or refracted ray) fails"}};
     for (const StressPicture& picture : pictures) {
         FigureGroup group;
         group.title = picture.caseName;
+        if (picture.shrunkBy > 1) group.note = "shown at 1/" + std::to_string(picture.shrunkBy) + " size";
         group.figures.push_back({"oracle (long double)", picture.oraclePng, std::nullopt, ""});
         for (const ModePicture& m : picture.modes)
             group.figures.push_back({m.mode + ": " + count(m.flips, "flip", "flips") + ", " +

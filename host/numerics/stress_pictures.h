@@ -20,6 +20,11 @@ inline constexpr glm::vec3 kFlipMark{1, 0, 1};     // magenta: hit against miss
 inline constexpr glm::vec3 kWrongIdMark{1, 1, 0};  // yellow: another object
 inline constexpr glm::vec3 kAcneMark{0, 1, 1};     // cyan: a secondary ray failed
 
+// Pictures wider than this are shrunk by a whole factor: a shown pixel is
+// the mean of those it covers, or the mark of any of them that is marked
+// (flips before wrong ids before acne).
+inline constexpr int kStressPictureWidth = 320;
+
 struct ModePicture {
     std::string mode;
     std::string png;
@@ -30,6 +35,7 @@ struct StressPicture {
     std::string caseName;
     std::string oraclePng;
     std::vector<ModePicture> modes;  // the GPU modes that ran
+    int shrunkBy = 1;                // the pictures' factor (kStressPictureWidth)
 };
 
 // The oracle's view (it has no lights): each pixel's object in its diffuse
@@ -39,11 +45,16 @@ Image oraclePicture(const Scene& scene, const std::vector<OraclePixel>& oracle, 
 
 // A GPU mode's colour image (clamped to [0, 1]) with its flips and wrong ids
 // against the oracle (classifyPixel, in `band`) and its acne pixels
-// (feelers.h FeelerStats::failedPixels) painted in the marks' colours.
+// (feelers.h FeelerStats::failedPixels) painted in the marks' colours, as
+// a PNG shrunk to at most kStressPictureWidth (the counts are the full
+// image's).
 ModePicture markedPicture(const std::string& mode, const Frame& frame,
                           const std::vector<OraclePixel>& oracle,
                           const std::vector<ModeSample>& samples, int band,
                           const std::vector<std::size_t>& acnePixels);
+
+// The oracle's view as a PNG, shrunk as markedPicture shrinks.
+std::string oraclePng(const Scene& scene, const std::vector<OraclePixel>& oracle, int width, int height);
 
 // A case's picture as bytes and back (from the MPI rank that ran the case).
 std::string encodePicture(const StressPicture& picture);

@@ -2,7 +2,7 @@
 
 #include "dist/bytes.h"
 #include "gpu/gpu_tracer.h"
-#include "image/image_io.h"
+#include "image/pictures.h"
 #include "numerics/feelers.h"
 #include "numerics/stress_pictures.h"
 #include "reference/scene_intersector.h"
@@ -247,7 +247,8 @@ std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Contex
         *log << stressCase.name << ": oracle " << secondsSince(oracleStart) << " s\n";
     if (picture) {
         picture->caseName = stressCase.name;
-        picture->oraclePng = pngBytes(oraclePicture(scene, oracle, settings.width, settings.height));
+        picture->oraclePng = oraclePng(scene, oracle, settings.width, settings.height);
+        picture->shrunkBy = shrinkFactorFor(Image{settings.width, 1, 1, {}}, kStressPictureWidth);
     }
 
     std::vector<ModeMetrics> rows;

@@ -52,6 +52,27 @@ TEST(StressPictures, MarksFlipsWrongIdsAndAcneInTheirColours) {
     EXPECT_EQ(pixel(image, 4), (std::vector<float>{51.0f / 255, 102.0f / 255, 153.0f / 255}));  // silhouette: unmarked
 }
 
+// Wider than kStressPictureWidth: shrunk, every mark kept (the strongest of a block).
+TEST(StressPictures, ShrunkPicturesKeepEveryMark) {
+    Frame frame(330, 1);  // shrunk by 2 to 165
+    for (size_t i = 0; i < frame.pixelCount(); ++i) frame.color[i] = i % 2 ? glm::vec3(1) : glm::vec3(0);
+    std::vector<OraclePixel> oracle(frame.pixelCount(), oracleHit(0));
+    std::vector<ModeSample> samples(frame.pixelCount(), sampleOf(0));
+    samples[1] = sampleOf(-1);  // a flip beside acne at pixel 0
+    samples[3] = sampleOf(1);   // a wrong id
+    const ModePicture picture = markedPicture("naive", frame, oracle, samples, 0, {0, 329});
+    EXPECT_EQ(picture.flips, 1u);
+    EXPECT_EQ(picture.wrongIds, 1u);
+    EXPECT_EQ(picture.acne, 2u);
+    const Image image = decodeImage(picture.png, "shrunk.png");
+    ASSERT_EQ(image.width, 165);
+    EXPECT_EQ(pixel(image, 0), (std::vector<float>{1, 0, 1}));    // the flip wins over acne
+    EXPECT_EQ(pixel(image, 1), (std::vector<float>{1, 1, 0}));    // the wrong id
+    EXPECT_EQ(pixel(image, 2), (std::vector<float>{128.0f / 255, 128.0f / 255, 128.0f / 255}));  // the mean
+    EXPECT_EQ(pixel(image, 164), (std::vector<float>{0, 1, 1}));  // acne in the last pixel
+    EXPECT_EQ(decodeImage(oraclePng(Scene{}, std::vector<OraclePixel>(330, oracleHit(-1)), 330, 1), "o.png").width, 165);
+}
+
 TEST(StressPictures, OracleViewShadesDiffuseByFacingOverTheBackground) {
     Scene scene;
     scene.background = {0.2, 0.4, 1.0};
