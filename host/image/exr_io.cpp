@@ -50,8 +50,17 @@ std::string channelNames(const Imf::ChannelList& channels) {
     return names.empty() ? "none" : names;
 }
 
-// A header's data window within image_io.h's limits, or an Error.
-void requireReadableSize(const Imath::Box2i& window, const std::string& path) {
+// OpenEXR sizes its buffers by the header before it reads a pixel: a line
+// (or tile) of every channel, for as many lines as a chunk holds (up to
+// 256). These bound what a damaged or hostile header can make it allocate;
+// vkray writes 11 channels, production files rarely more than a few dozen.
+constexpr long long kMaxExrChannels = 256;
+constexpr long long kMaxExrValuesPerLine = 1 << 20;  // width x channels
+constexpr int kMaxExrTileSide = 512;
+
+// A header within image_io.h's size limits and the bounds above, or an Error.
+void requireReadableHeader(const Imf::Header& header, const std::string& path) {
+    const Imath::Box2i window = header.dataWindow();
     const long long width = (long long)window.max.x - window.min.x + 1;
     const long long height = (long long)window.max.y - window.min.y + 1;
     if (width < 1 || height < 1)
@@ -60,6 +69,13 @@ void requireReadableSize(const Imath::Box2i& window, const std::string& path) {
         throw Error(path + ": the image is " + std::to_string(width) + "x" + std::to_string(height) +
                     ", above vkray's limit of " + std::to_string(kMaxImagePixels) + " pixels (" +
                     std::to_string(kMaxImageSide) + " per side)");
+    long long channels = 0;
+    for (auto c = header.channels().begin(); c != header.channels().end(); ++c) ++channels;
+    if (channels > kMaxExrChannels || width * channels > kMaxExrValuesPerLine)
+        throw Error(path + ": the OpenEXR file has " + std::to_string(channels) + " channels of " +
+                    std::to_string(width) + " pixels a line, above vkray's limit of " +
+                    std::to_string(kMaxExrChannels) + " channels and " +
+                    std::to_string(kMaxExrValuesPerLine) + " values a line");
 }
 
 // Opens the bytes as an OpenEXR file and hands it to `use`; OpenEXR's own
@@ -69,12 +85,12 @@ auto withExrFile(const std::string& bytes, const std::string& path, Use&& use) {
     // The signature first, so that no other bytes reach OpenEXR's parser.
     if (bytes.size() < 8 || !Imf::isImfMagic(bytes.data()))
         throw Error(path + ": not a readable OpenEXR file (no OpenEXR signature)");
-    // OpenEXR sizes its tables by the data window when it opens a file: every
-    // part's side is held to vkray's limit, and the first part's window is
-    // checked in full before the file is opened.
+    // Every part's sides and tiles are held to the limits by OpenEXR's own
+    // check; the first part's header is read and checked in full before the
+    // file is opened.
     static const bool limited = [] {
         Imf::Header::setMaxImageSize(int(kMaxImageSide), int(kMaxImageSide));
-        Imf::Header::setMaxTileSize(int(kMaxImageSide), int(kMaxImageSide));
+        Imf::Header::setMaxTileSize(kMaxExrTileSide, kMaxExrTileSide);
         return true;
     }();
     (void)limited;
@@ -85,7 +101,7 @@ auto withExrFile(const std::string& bytes, const std::string& path, Use&& use) {
         int version = int(std::uint8_t(bytes[4])) | int(std::uint8_t(bytes[5])) << 8 |
                       int(std::uint8_t(bytes[6])) << 16 | int(std::uint8_t(bytes[7])) << 24;
         first.readFrom(stream, version);
-        requireReadableSize(first.dataWindow(), path);
+        requireReadableHeader(first, path);
         stream.seekg(0);
         Imf::InputFile file(stream);
         return use(file);
@@ -151,7 +167,7 @@ ExrImage decodeExr(const std::string& bytes, const std::string& path,
     return withExrFile(bytes, path, [&](Imf::InputFile& file) {
         const Imf::Header& header = file.header();
         const Imath::Box2i window = header.dataWindow();
-        requireReadableSize(window, path);
+        requireReadableHeader(header, path);
         const long long width = (long long)window.max.x - window.min.x + 1;
         const long long height = (long long)window.max.y - window.min.y + 1;
         std::vector<std::string> names = wanted;

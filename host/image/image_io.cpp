@@ -509,7 +509,7 @@ Image readIds(const std::string& path) {
 }
 
 bool hasIdChannel(const std::string& path) {
-    if (lowerExtension(path) != ".exr") return false;
+    if (!isExrPath(path)) return false;
     const std::vector<std::string> names = exrChannelNames(readFile(path), path);
     return std::find(names.begin(), names.end(), kExrIdChannel) != names.end();
 }

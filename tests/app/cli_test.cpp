@@ -69,6 +69,24 @@ TEST_F(Cli, ExrAovsHoldThePfmLayersAndTheHitPoints) {
         EXPECT_GT(p.z, 0) << i;                          // the side facing the eye at z = 5
     }
     EXPECT_GT(hits, 50u);
+
+    // With blocks and jittered samples P follows sample 0's ray, the one the
+    // other layers hold: it still lies on the sphere.
+    RunResult jittered = vkray("render " + s + " -o " + path("c.png") + " --aov " + path("c.exr") +
+                               " --size 32x24 --spp 4 --block 2 --seed 7");
+    ASSERT_EQ(jittered.status, 0) << jittered.output;
+    std::ifstream jin(path("c.exr"), std::ios::binary);
+    const vkray::ExrImage sampled = vkray::decodeExr(
+        std::string{std::istreambuf_iterator<char>(jin), std::istreambuf_iterator<char>()}, "c.exr",
+        {"id", "P.X", "P.Y", "P.Z"});
+    size_t sampledHits = 0;
+    for (size_t i = 0; i < sampled.channels[0].values.size(); ++i) {
+        if (sampled.channels[0].values[i] < 0) continue;
+        ++sampledHits;
+        const glm::vec3 p(sampled.channels[1].values[i], sampled.channels[2].values[i], sampled.channels[3].values[i]);
+        EXPECT_NEAR(glm::length(p), 1.0f, 1e-5f) << i;
+    }
+    EXPECT_GT(sampledHits, 50u);
 }
 
 TEST_F(Cli, ExrImageIsLinearAndOneFileHoldsImageAndAovs) {

@@ -165,6 +165,24 @@ TEST_F(ExrIo, ExrheaderListsTheLayers) {
     EXPECT_NE(listing.find("compression (type compression): zip"), std::string::npos) << listing;
 }
 
+// A file another writer made: OpenEXR's exrmaketiled copies vkray's into
+// 2x2 tiles with PIZ compression; every layer reads back the same bits.
+TEST_F(ExrIo, ReadsATiledPizCopyMadeByOpenExrsTools) {
+    if (std::system("command -v exrmaketiled > /dev/null 2>&1") != 0)
+        GTEST_SKIP() << "exrmaketiled is not installed (Debian package openexr; scripts/install-deps.sh)";
+    writeAovs(path("aov.exr"), awkwardFrame(), awkwardHitPoints());
+    ASSERT_EQ(std::system(("exrmaketiled -t 2 2 -z piz " + path("aov.exr") + " " + path("tiled.exr") +
+                           " > /dev/null 2>&1").c_str()),
+              0);
+    const ExrImage original = decodeExr(readBytes("aov.exr"), "aov.exr", kAovChannels);
+    const ExrImage tiled = decodeExr(readBytes("tiled.exr"), "tiled.exr", kAovChannels);
+    ASSERT_EQ(tiled.width, 3);
+    ASSERT_EQ(tiled.height, 2);
+    for (size_t c = 0; c < kAovChannels.size(); ++c)
+        EXPECT_EQ(bits(tiled.channels[c].values), bits(original.channels[c].values)) << kAovChannels[c];
+    EXPECT_NE(readBytes("tiled.exr"), readBytes("aov.exr"));  // another file, the same pixels
+}
+
 TEST_F(ExrIo, BadFilesAreRefusedWithTheirName) {
     writeAovs(path("good.exr"), awkwardFrame(), awkwardHitPoints());
     const std::string good = readBytes("good.exr");
@@ -212,6 +230,16 @@ TEST_F(ExrIo, AHeaderAskingForTooManyPixelsIsRefusedBeforeReading) {
               "(65536 per side)");
     EXPECT_EQ(errorOf([&] { decodeImage(withMaxCorner(-1, 0), "empty.exr"); }),
               "empty.exr: not a readable OpenEXR file (its data window is empty)");
+    // Channels enough to make OpenEXR's line buffers huge: refused from the header.
+    ExrImage wide{5000, 1, {}};
+    for (int c = 0; c < 210; ++c) wide.channels.push_back({"c" + std::to_string(c), std::vector<float>(5000)});
+    EXPECT_EQ(errorOf([&] { decodeImage(encodeExr(wide, "wide.exr"), "wide.exr"); }),
+              "wide.exr: the OpenEXR file has 210 channels of 5000 pixels a line, above vkray's limit "
+              "of 256 channels and 1048576 values a line");
+    ExrImage many{1, 1, {}};
+    for (int c = 0; c < 257; ++c) many.channels.push_back({"c" + std::to_string(c), {0}});
+    EXPECT_EQ(errorOf([&] { decodeImage(encodeExr(many, "many.exr"), "many.exr"); }).find("has 257 channels"),
+              std::string("many.exr: the OpenEXR file ").size());
 }
 
 TEST_F(ExrIo, WritesNothingForImagesItCannotWrite) {
