@@ -272,13 +272,14 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
 
     if (stopRequested()) throw Interrupted();
     // `-o X.exr --aov X.exr`: the AOV file holds the image too (R, G, B).
-    const bool imageInAovs = !o.aovPrefix.empty() && isExrPath(o.aovPrefix) &&
-                             fs::path(output).lexically_normal() == fs::path(o.aovPrefix).lexically_normal();
+    const bool imageInAovs =
+        !o.aovPrefix.empty() && isExrPath(o.aovPrefix) &&
+        fs::path(output).lexically_normal() == fs::path(o.aovPrefix).lexically_normal();
     if (!imageInAovs) files.stageImage(output, colorImage(frame));
     if (!o.aovPrefix.empty())
-        files.stageAovs(o.aovPrefix, frame,
-                        isExrPath(o.aovPrefix) ? hitPoints(frame, camera, settings)
-                                               : std::vector<glm::vec3>{});
+        files.stageAovs(
+            o.aovPrefix, frame,
+            isExrPath(o.aovPrefix) ? hitPoints(frame, camera, settings) : std::vector<glm::vec3>{});
     if (stopRequested()) throw Interrupted();
     files.commit();
     if (!o.diffPath.empty()) out << "wrote " << o.diffPath << "\n";

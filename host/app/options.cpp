@@ -290,7 +290,8 @@ Options parseOptions(const std::vector<std::string>& args) {
             arg = arg.substr(0, eq);
         }
         if (o.command == Command::Compare && arg == "--ids") {
-            if (i + 2 >= args.size()) throw Error("--ids: expected two files, A.id.pfm B.id.pfm (or A.exr B.exr)");
+            if (i + 2 >= args.size())
+                throw Error("--ids: expected two files, A.id.pfm B.id.pfm (or A.exr B.exr)");
             o.idsA = args[++i];
             o.idsB = args[++i];
             continue;

@@ -83,7 +83,8 @@ int runStress(const Options& o, std::ostream& out, std::ostream& err) {
     const std::vector<std::string> results =
         dist::runJobsAcrossRanks(world, cases.size(), [&](std::size_t job) {
             numerics::StressPicture picture;
-            const auto caseRows = numerics::runStressCase(cases[job], &context, options, &err, &picture);
+            const auto caseRows =
+                numerics::runStressCase(cases[job], &context, options, &err, &picture);
             dist::ByteWriter writer;
             writer << numerics::encodeRows(caseRows) << numerics::encodePicture(picture);
             return writer.bytes();

@@ -66,9 +66,10 @@ void requireReadableHeader(const Imf::Header& header, const std::string& path) {
     if (width < 1 || height < 1)
         throw Error(path + ": not a readable OpenEXR file (its data window is empty)");
     if (width > kMaxImageSide || height > kMaxImageSide || width * height > kMaxImagePixels)
-        throw Error(path + ": the image is " + std::to_string(width) + "x" + std::to_string(height) +
-                    ", above vkray's limit of " + std::to_string(kMaxImagePixels) + " pixels (" +
-                    std::to_string(kMaxImageSide) + " per side)");
+        throw Error(path + ": the image is " + std::to_string(width) + "x" +
+                    std::to_string(height) + ", above vkray's limit of " +
+                    std::to_string(kMaxImagePixels) + " pixels (" + std::to_string(kMaxImageSide) +
+                    " per side)");
     long long channels = 0;
     for (auto c = header.channels().begin(); c != header.channels().end(); ++c) ++channels;
     if (channels > kMaxExrChannels || width * channels > kMaxExrValuesPerLine)
@@ -137,8 +138,10 @@ std::string encodeExr(const ExrImage& image, const std::string& path) {
         if (header.channels().findChannel(c.name))
             throw Error("cannot write " + path + ": two channels are named " + c.name);
         header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
-        frameBuffer.insert(c.name, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(c.values.data())),
-                                              sizeof(float), sizeof(float) * size_t(image.width)));
+        frameBuffer.insert(
+            c.name, Imf::Slice(Imf::FLOAT,
+                               const_cast<char*>(reinterpret_cast<const char*>(c.values.data())),
+                               sizeof(float), sizeof(float) * size_t(image.width)));
     }
     try {
         Imf::StdOSStream stream;
@@ -188,7 +191,8 @@ ExrImage decodeExr(const std::string& bytes, const std::string& path,
         Imf::FrameBuffer frameBuffer;
         for (const std::string& name : names) {
             image.channels.push_back({name, std::vector<float>(size_t(width) * size_t(height))});
-            frameBuffer.insert(name, Imf::Slice::Make(Imf::FLOAT, image.channels.back().values.data(), window));
+            frameBuffer.insert(
+                name, Imf::Slice::Make(Imf::FLOAT, image.channels.back().values.data(), window));
         }
         file.setFrameBuffer(frameBuffer);
         file.readPixels(window.min.y, window.max.y);
@@ -198,12 +202,14 @@ ExrImage decodeExr(const std::string& bytes, const std::string& path,
 
 ExrImage exrFromImage(const Image& image) {
     ExrImage exr{image.width, image.height, {}};
-    const std::vector<std::string> names =
-        image.channels == 3 ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Y"};
+    const std::vector<std::string> names = image.channels == 3
+                                               ? std::vector<std::string>{"R", "G", "B"}
+                                               : std::vector<std::string>{"Y"};
     const size_t count = size_t(image.width) * size_t(image.height);
     for (size_t c = 0; c < names.size(); ++c) {
         ExrChannel channel{names[c], std::vector<float>(count)};
-        for (size_t i = 0; i < count; ++i) channel.values[i] = image.pixels.at(i * names.size() + c);
+        for (size_t i = 0; i < count; ++i)
+            channel.values[i] = image.pixels.at(i * names.size() + c);
         exr.channels.push_back(std::move(channel));
     }
     return exr;

@@ -497,7 +497,8 @@ Image decodeImage(const std::string& bytes, const std::string& path) {
     switch (formatOf(path, true)) {
     case Format::Png: return decodePng(path, bytes);
     case Format::Bmp: return decodeBmp(path, bytes);
-    case Format::Exr: return decodeExrImage(path, bytes);
+    case Format::Exr:
+        return decodeExrImage(path, bytes);
     default: return decodePfm(path, bytes);
     }
 }

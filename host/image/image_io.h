@@ -97,7 +97,7 @@ public:
 
     void stage(const std::string& path, const std::string& bytes);  // throws Error naming path
     void stageImage(const std::string& path, const Image& image);    // as writeImage
-    void stageAovs(const std::string& target, const Frame& frame,   // as writeAovs
+    void stageAovs(const std::string& target, const Frame& frame,    // as writeAovs
                    const std::vector<glm::vec3>& hitPoints);
     void commit();
 

@@ -107,7 +107,8 @@ Image errorImage(const Image& a, const Image& b) {
     for (size_t i = 0; i < error.pixels.size(); ++i) {
         double largest = 0;
         for (size_t c = 0; c < channels; ++c)
-            largest = std::max(largest, sampleError(a.pixels[i * channels + c], b.pixels[i * channels + c]));
+            largest = std::max(largest,
+                               sampleError(a.pixels[i * channels + c], b.pixels[i * channels + c]));
         error.pixels[i] = float(largest);
     }
     return error;

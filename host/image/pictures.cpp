@@ -11,9 +11,11 @@ namespace vkray {
 
 Image shrink(const Image& image, int factor, Shrink how) {
     if (factor < 1) throw Error("internal: shrink factor " + std::to_string(factor));
-    const int width = (image.width + factor - 1) / factor, height = (image.height + factor - 1) / factor;
+    const int width = (image.width + factor - 1) / factor,
+              height = (image.height + factor - 1) / factor;
     const size_t channels = size_t(image.channels);
-    Image small{width, height, image.channels, std::vector<float>(size_t(width) * size_t(height) * channels)};
+    Image small{width, height, image.channels,
+                std::vector<float>(size_t(width) * size_t(height) * channels)};
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             for (size_t c = 0; c < channels; ++c) {
@@ -21,9 +23,14 @@ Image shrink(const Image& image, int factor, Shrink how) {
                 int count = 0;
                 for (int sy = y * factor; sy < std::min((y + 1) * factor, image.height); ++sy) {
                     for (int sx = x * factor; sx < std::min((x + 1) * factor, image.width); ++sx) {
-                        const float v = image.pixels[(size_t(sy) * size_t(image.width) + size_t(sx)) * channels + c];
+                        const float v =
+                            image
+                                .pixels[(size_t(sy) * size_t(image.width) + size_t(sx)) * channels +
+                                        c];
                         sum += v;
-                        largest = std::isnan(v) || std::isnan(largest) ? NAN : std::max(largest, double(v));
+                        largest = std::isnan(v) || std::isnan(largest)
+                                      ? NAN
+                                      : std::max(largest, double(v));
                         ++count;
                     }
                 }
@@ -48,10 +55,15 @@ double heatPosition(const HeatScale& scale, double value) {
 
 glm::vec3 heatColour(double t) {
     // Samples of matplotlib's inferno at t = 0, 1/8, ..., 1.
-    static constexpr std::array<std::array<float, 3>, 9> kStops{{
-        {0.001f, 0.000f, 0.014f}, {0.096f, 0.047f, 0.241f}, {0.258f, 0.039f, 0.406f},
-        {0.416f, 0.090f, 0.433f}, {0.578f, 0.148f, 0.404f}, {0.735f, 0.216f, 0.330f},
-        {0.865f, 0.317f, 0.226f}, {0.955f, 0.469f, 0.099f}, {0.988f, 0.998f, 0.645f}}};
+    static constexpr std::array<std::array<float, 3>, 9> kStops{{{0.001f, 0.000f, 0.014f},
+                                                                 {0.096f, 0.047f, 0.241f},
+                                                                 {0.258f, 0.039f, 0.406f},
+                                                                 {0.416f, 0.090f, 0.433f},
+                                                                 {0.578f, 0.148f, 0.404f},
+                                                                 {0.735f, 0.216f, 0.330f},
+                                                                 {0.865f, 0.317f, 0.226f},
+                                                                 {0.955f, 0.469f, 0.099f},
+                                                                 {0.988f, 0.998f, 0.645f}}};
     const double at = std::clamp(std::isnan(t) ? 1.0 : t, 0.0, 1.0) * double(kStops.size() - 1);
     const size_t i = std::min(size_t(at), kStops.size() - 2);
     const float f = float(at - double(i));
@@ -74,7 +86,8 @@ Image heatMap(const Image& values, const HeatScale& scale) {
 std::string hexColour(glm::vec3 colour) {
     const auto byte = [](float v) { return int(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); };
     char text[8];
-    std::snprintf(text, sizeof text, "#%02x%02x%02x", byte(colour.r), byte(colour.g), byte(colour.b));
+    std::snprintf(text, sizeof text, "#%02x%02x%02x", byte(colour.r), byte(colour.g),
+                  byte(colour.b));
     return text;
 }
 

@@ -122,7 +122,7 @@ struct PixelSetup {
     RVec pTrue, nTrue, dTrue;
     Real tTrue;      // the primary hit's distance
     const SceneObject* original;  // the object as the scene has it (for the oracle)
-    size_t pixel;    // its index, row-major
+    size_t pixel;                 // its index, row-major
 };
 
 // The pixels both agree on (same object, outside the float band), with the

@@ -113,7 +113,8 @@ void makeThumbnails(const Image& image, const Image* reference, SweepPoint& p) {
     const int factor = shrinkFactorFor(image, kThumbnailWidth);
     p.imagePng = pngBytes(shrink(image, factor, Shrink::Average));
     if (reference)
-        p.errorPng = pngBytes(heatMap(shrink(errorImage(image, *reference), factor, Shrink::Largest), kErrorScale));
+        p.errorPng = pngBytes(
+            heatMap(shrink(errorImage(image, *reference), factor, Shrink::Largest), kErrorScale));
 }
 
 }  // namespace
@@ -242,7 +243,8 @@ Report sweepReport(const std::string& scenePath, const std::vector<SweepPoint>& 
         FigureGroup group{text, p.note, {}};
         if (p.ran && !p.errorPng.empty()) {
             char note[128];
-            std::snprintf(note, sizeof note, "RMSE %.3g, max error %.3g, %.3g s", p.rmse, p.maxError, p.seconds);
+            std::snprintf(note, sizeof note, "RMSE %.3g, max error %.3g, %.3g s", p.rmse,
+                          p.maxError, p.seconds);
             group.note = note;
         }
         if (!p.imagePng.empty()) group.figures.push_back({"image", p.imagePng, std::nullopt, ""});
@@ -268,7 +270,8 @@ Report sweepReport(const std::string& scenePath, const std::vector<SweepPoint>& 
             shortLabel += (shortLabel.empty() ? "" : " ") + v;
         }
         // A colour per precision mode ("cpu double" for the reference).
-        const std::string series = label.front().rfind("precision ", 0) == 0 ? label.front().substr(10) : label.front();
+        const std::string series =
+            label.front().rfind("precision ", 0) == 0 ? label.front().substr(10) : label.front();
         rmsePlot.points.push_back({shortLabel, p.seconds, p.rmse, flagged, series});
         maxPlot.points.push_back({shortLabel, p.seconds, p.maxError, flagged, series});
     }

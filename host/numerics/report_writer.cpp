@@ -132,8 +132,10 @@ std::vector<std::string> wrapped(const std::string& text, size_t width) {
     std::vector<std::string> lines;
     std::istringstream words(text);
     for (std::string word; words >> word;) {
-        if (!lines.empty() && lines.back().size() + 1 + word.size() <= width) lines.back() += " " + word;
-        else lines.push_back(word);
+        if (!lines.empty() && lines.back().size() + 1 + word.size() <= width)
+            lines.back() += " " + word;
+        else
+            lines.push_back(word);
     }
     return lines;
 }
@@ -154,14 +156,16 @@ constexpr double kColourScaleWidth = 180;  // colourScaleSvg's
 
 std::string figureHtml(const Figure& figure) {
     const auto [width, height] = pngSize(figure.png);
-    const int zoom = width > 0 && width < kLeastShownWidth ? (kLeastShownWidth + width - 1) / width : 1;
+    const int zoom =
+        width > 0 && width < kLeastShownWidth ? (kLeastShownWidth + width - 1) / width : 1;
     // The figure as wide as its picture (or its colour scale), so that a long
     // caption wraps under the picture instead of widening it.
     const int shown = std::max(width * zoom, figure.scale ? int(kColourScaleWidth) : 0);
     std::ostringstream h;
-    h << "<figure style=\"width: " << shown << "px\"><img src=\"data:image/png;base64," << base64(figure.png) << "\" width=\""
-      << width * zoom << "\" height=\"" << height * zoom << "\" alt=\"" << xml(figure.caption)
-      << "\"/><figcaption>" << xml(figure.caption) << "</figcaption>";
+    h << "<figure style=\"width: " << shown << "px\"><img src=\"data:image/png;base64,"
+      << base64(figure.png) << "\" width=\"" << width * zoom << "\" height=\"" << height * zoom
+      << "\" alt=\"" << xml(figure.caption) << "\"/><figcaption>" << xml(figure.caption)
+      << "</figcaption>";
     if (figure.scale) h << colourScaleSvg(*figure.scale, figure.scaleLabel);
     h << "</figure>";
     return h.str();
@@ -174,8 +178,8 @@ std::string galleryHtml(const Gallery& gallery) {
     if (!gallery.legend.empty()) {
         h << "<div class=\"legend\">";
         for (const LegendEntry& entry : gallery.legend)
-            h << "<span class=\"entry\"><span class=\"swatch\" style=\"background: " << xml(entry.colour)
-              << "\"></span>" << xml(entry.text) << "</span>";
+            h << "<span class=\"entry\"><span class=\"swatch\" style=\"background: "
+              << xml(entry.colour) << "\"></span>" << xml(entry.text) << "</span>";
         h << "</div>\n";
     }
     h << "<div class=\"groups\">\n";
@@ -270,8 +274,9 @@ std::string toSvg(const Plot& plot) {
       << "\" viewBox=\"0 0 " << W << " " << H << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
     s << "<title>" << xml(plot.title) << "</title>\n";
     s << "<rect x=\"0\" y=\"0\" width=\"" << W << "\" height=\"" << H << "\" fill=\"white\"/>\n";
-    s << "<text x=\"" << (left + W - right) / 2 << "\" y=\"16\" text-anchor=\"middle\" font-weight=\"bold\">"
-      << xml(plot.title) << "</text>\n";
+    s << "<text x=\"" << (left + W - right) / 2
+      << "\" y=\"16\" text-anchor=\"middle\" font-weight=\"bold\">" << xml(plot.title)
+      << "</text>\n";
     for (int d = ax.first(); d <= ax.hi; ++d) {
         const double x = px(d < ax.lo ? 0.0 : std::pow(10.0, d));
         s << "<line x1=\"" << x << "\" y1=\"" << top << "\" x2=\"" << x << "\" y2=\"" << H - bottom
@@ -345,7 +350,8 @@ std::string toSvg(const Plot& plot) {
         return kPalette[k % (sizeof kPalette / sizeof *kPalette)];
     };
     for (const PlotPoint& p : plot.points)
-        if (std::find(series.begin(), series.end(), seriesOf(p)) == series.end()) series.push_back(seriesOf(p));
+        if (std::find(series.begin(), series.end(), seriesOf(p)) == series.end())
+            series.push_back(seriesOf(p));
     for (size_t i = 0; i < plot.points.size(); ++i) {
         const PlotPoint& p = plot.points[i];
         const char* color = colourOf(seriesOf(p));
@@ -369,14 +375,15 @@ std::string toSvg(const Plot& plot) {
         const std::vector<std::string> lines = wrapped(text, kLegendLine);
         s << mark;
         for (size_t k = 0; k < lines.size(); ++k)
-            s << "<text x=\"" << legendX + 18 << "\" y=\"" << y + 4 + lineHeight * double(k) << "\">"
-              << xml(lines[k]) << "</text>\n";
+            s << "<text x=\"" << legendX + 18 << "\" y=\"" << y + 4 + lineHeight * double(k)
+              << "\">" << xml(lines[k]) << "</text>\n";
         y += lineHeight * double(lines.size());
     };
-    const bool anyFlagged = std::any_of(plot.points.begin(), plot.points.end(), [](const PlotPoint& p) { return p.flagged; });
+    const bool anyFlagged = std::any_of(plot.points.begin(), plot.points.end(),
+                                        [](const PlotPoint& p) { return p.flagged; });
     // Lines left for the series once the other entries have theirs.
-    const long room = long((lastLine - y) / lineHeight) -
-                      (anyFlagged ? long(wrapped(plot.flaggedMeaning, kLegendLine).size()) : 0) - (front.empty() ? 0 : 1);
+    const long room = long((lastLine - y) / lineHeight) - (front.empty() ? 0 : 1) -
+                      (anyFlagged ? long(wrapped(plot.flaggedMeaning, kLegendLine).size()) : 0);
     for (size_t k = 0; k < series.size(); ++k) {
         if (long(k) + 1 >= room && long(series.size()) > room) {
             entry("", "... and " + std::to_string(series.size() - k) + " more (hover a point)");
@@ -391,8 +398,8 @@ std::string toSvg(const Plot& plot) {
                   "\" r=\"5\" fill=\"white\" stroke=\"#d62728\" stroke-width=\"2\"/>\n",
               plot.flaggedMeaning);
     if (!front.empty())
-        entry("<line x1=\"" + printed("%.1f", legendX) + "\" y1=\"" + printed("%.1f", y) + "\" x2=\"" +
-                  printed("%.1f", legendX + 14) + "\" y2=\"" + printed("%.1f", y) +
+        entry("<line x1=\"" + printed("%.1f", legendX) + "\" y1=\"" + printed("%.1f", y) +
+                  "\" x2=\"" + printed("%.1f", legendX + 14) + "\" y2=\"" + printed("%.1f", y) +
                   "\" stroke=\"#999\" stroke-dasharray=\"4 3\"/>\n",
               "Pareto front");
     s << "</g>\n</svg>\n";
@@ -400,26 +407,31 @@ std::string toSvg(const Plot& plot) {
 }
 
 std::string colourScaleSvg(const HeatScale& scale, const std::string& label) {
-    constexpr double W = kColourScaleWidth, H = 46, x0 = 18, x1 = W - 10, barTop = 4, barHeight = 12;
+    constexpr double W = kColourScaleWidth, H = 46, x0 = 18, x1 = W - 10, barTop = 4,
+                     barHeight = 12;
     constexpr int steps = 60;
     std::ostringstream s;
-    s << "<svg class=\"scale\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
-      << "\" viewBox=\"0 0 " << W << " " << H << "\" font-family=\"sans-serif\" font-size=\"10\">\n";
+    s << "<svg class=\"scale\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\""
+      << H << "\" viewBox=\"0 0 " << W << " " << H
+      << "\" font-family=\"sans-serif\" font-size=\"10\">\n";
     s << "<title>" << xml(label) << "</title>\n";
     const double step = (x1 - x0) / steps;
     for (int k = 0; k < steps; ++k)
         s << "<rect x=\"" << printed("%.2f", x0 + step * k) << "\" y=\"" << barTop << "\" width=\""
           << printed("%.2f", step + 0.3) << "\" height=\"" << barHeight << "\" fill=\""
           << hexColour(heatColour((k + 0.5) / steps)) << "\"/>\n";
-    s << "<rect x=\"" << x0 << "\" y=\"" << barTop << "\" width=\"" << x1 - x0 << "\" height=\"" << barHeight
-      << "\" fill=\"none\" stroke=\"#444\"/>\n";
-    const int first = int(std::lround(std::log10(scale.lo))), last = int(std::lround(std::log10(scale.hi)));
+    s << "<rect x=\"" << x0 << "\" y=\"" << barTop << "\" width=\"" << x1 - x0 << "\" height=\""
+      << barHeight << "\" fill=\"none\" stroke=\"#444\"/>\n";
+    const int first = int(std::lround(std::log10(scale.lo))),
+              last = int(std::lround(std::log10(scale.hi)));
     for (int d = first; d <= last; ++d) {
-        const double x = x0 + heatPosition(scale, std::pow(10.0, d) * (d == first ? 1.000001 : 1)) * (x1 - x0);
+        const double x =
+            x0 + heatPosition(scale, std::pow(10.0, d) * (d == first ? 1.000001 : 1)) * (x1 - x0);
         s << "<line x1=\"" << printed("%.1f", x) << "\" y1=\"" << barTop + barHeight << "\" x2=\""
-          << printed("%.1f", x) << "\" y2=\"" << barTop + barHeight + 4 << "\" stroke=\"#444\"/>\n<text x=\""
-          << printed("%.1f", x) << "\" y=\"" << barTop + barHeight + 13 << "\" text-anchor=\"middle\">"
-          << (d == first ? "\u2264" : "") << decadeLabel(d) << "</text>\n";
+          << printed("%.1f", x) << "\" y2=\"" << barTop + barHeight + 4
+          << "\" stroke=\"#444\"/>\n<text x=\"" << printed("%.1f", x) << "\" y=\""
+          << barTop + barHeight + 13 << "\" text-anchor=\"middle\">" << (d == first ? "\u2264" : "")
+          << decadeLabel(d) << "</text>\n";
     }
     s << "<text x=\"" << W / 2 << "\" y=\"" << H - 3 << "\" text-anchor=\"middle\">" << xml(label)
       << "</text>\n</svg>\n";
@@ -427,7 +439,8 @@ std::string colourScaleSvg(const HeatScale& scale, const std::string& label) {
 }
 
 std::string base64(const std::string& bytes) {
-    static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static constexpr char kDigits[] =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     out.reserve((bytes.size() + 2) / 3 * 4);
     for (size_t i = 0; i < bytes.size(); i += 3) {

@@ -29,7 +29,8 @@ int pictureFactor(int width) {
 
 }  // namespace
 
-Image oraclePicture(const Scene& scene, const std::vector<OraclePixel>& oracle, int width, int height) {
+Image oraclePicture(const Scene& scene, const std::vector<OraclePixel>& oracle, int width,
+                    int height) {
     if (oracle.size() != std::size_t(width) * std::size_t(height))
         throw Error("internal: the oracle's pixels do not fill the picture");
     Image image{width, height, 3, std::vector<float>(oracle.size() * 3)};
@@ -40,7 +41,9 @@ Image oraclePicture(const Scene& scene, const std::vector<OraclePixel>& oracle, 
             continue;
         }
         const double facing = std::abs(glm::dot(toDvec3(hit.normal), toDvec3(oracle[i].direction)));
-        paint(image, i, glm::vec3(scene.objects[std::size_t(hit.id)].material.diffuse * (0.25 + 0.75 * facing)));
+        paint(image, i,
+              glm::vec3(scene.objects[std::size_t(hit.id)].material.diffuse *
+                        (0.25 + 0.75 * facing)));
     }
     return image;
 }
@@ -80,15 +83,19 @@ ModePicture markedPicture(const std::string& mode, const Frame& frame,
     return picture;
 }
 
-std::string oraclePng(const Scene& scene, const std::vector<OraclePixel>& oracle, int width, int height) {
-    return pngBytes(shrink(oraclePicture(scene, oracle, width, height), pictureFactor(width), Shrink::Average));
+std::string oraclePng(const Scene& scene, const std::vector<OraclePixel>& oracle, int width,
+                      int height) {
+    return pngBytes(
+        shrink(oraclePicture(scene, oracle, width, height), pictureFactor(width), Shrink::Average));
 }
 
 std::string encodePicture(const StressPicture& picture) {
     dist::ByteWriter writer;
-    writer << picture.caseName << picture.oraclePng << picture.shrunkBy << std::uint64_t(picture.modes.size());
+    writer << picture.caseName << picture.oraclePng << picture.shrunkBy
+           << std::uint64_t(picture.modes.size());
     for (const ModePicture& m : picture.modes)
-        writer << m.mode << m.png << std::uint64_t(m.flips) << std::uint64_t(m.wrongIds) << std::uint64_t(m.acne);
+        writer << m.mode << m.png << std::uint64_t(m.flips) << std::uint64_t(m.wrongIds)
+               << std::uint64_t(m.acne);
     return writer.bytes();
 }
 
@@ -117,17 +124,21 @@ void addStressPictures(Report& report, const std::vector<StressPicture>& picture
         "darker as the surface turns from the ray; the oracle traces no lights), then the image "
         "each GPU mode rendered, with the pixels where that mode is wrong painted over. Silhouette "
         "pixels (left out of the metrics) are not marked. A mode that did not run has no picture. "
-        "Pictures wider than " + std::to_string(kStressPictureWidth) + " pixels are shown shrunk "
+        "Pictures wider than " +
+        std::to_string(kStressPictureWidth) +
+        " pixels are shown shrunk "
         "(the caption says by how much): a shown pixel is the mean of those it covers, or marked "
         "when any of them is (a flip before a wrong id before acne); the counts are the full "
         "image's."};
-    gallery.legend = {{hexColour(kFlipMark), "flip: hit where the oracle misses, or miss where it hits"},
-                      {hexColour(kWrongIdMark), "wrong id: another object than the oracle's"},
-                      {hexColour(kAcneMark), "acne: a shadow feeler (or refracted ray) fails"}};
+    gallery.legend = {
+        {hexColour(kFlipMark), "flip: hit where the oracle misses, or miss where it hits"},
+        {hexColour(kWrongIdMark), "wrong id: another object than the oracle's"},
+        {hexColour(kAcneMark), "acne: a shadow feeler (or refracted ray) fails"}};
     for (const StressPicture& picture : pictures) {
         FigureGroup group;
         group.title = picture.caseName;
-        if (picture.shrunkBy > 1) group.note = "shown at 1/" + std::to_string(picture.shrunkBy) + " size";
+        if (picture.shrunkBy > 1)
+            group.note = "shown at 1/" + std::to_string(picture.shrunkBy) + " size";
         group.figures.push_back({"oracle (long double)", picture.oraclePng, std::nullopt, ""});
         for (const ModePicture& m : picture.modes)
             group.figures.push_back({m.mode + ": " + count(m.flips, "flip", "flips") + ", " +

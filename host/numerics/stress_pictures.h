@@ -41,7 +41,8 @@ struct StressPicture {
 // The oracle's view (it has no lights): each pixel's object in its diffuse
 // colour, darker as its normal turns from the ray, 0.25 + 0.75 |n.d|; the
 // scene's background where the exact ray hits nothing.
-Image oraclePicture(const Scene& scene, const std::vector<OraclePixel>& oracle, int width, int height);
+Image oraclePicture(const Scene& scene, const std::vector<OraclePixel>& oracle, int width,
+                    int height);
 
 // A GPU mode's colour image (clamped to [0, 1]) with its flips and wrong ids
 // against the oracle (classifyPixel, in `band`) and its acne pixels
@@ -54,7 +55,8 @@ ModePicture markedPicture(const std::string& mode, const Frame& frame,
                           const std::vector<std::size_t>& acnePixels);
 
 // The oracle's view as a PNG, shrunk as markedPicture shrinks.
-std::string oraclePng(const Scene& scene, const std::vector<OraclePixel>& oracle, int width, int height);
+std::string oraclePng(const Scene& scene, const std::vector<OraclePixel>& oracle, int width,
+                      int height);
 
 // A case's picture as bytes and back (from the MPI rank that ran the case).
 std::string encodePicture(const StressPicture& picture);

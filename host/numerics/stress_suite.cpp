@@ -176,11 +176,19 @@ ModeMetrics compareWithOracle(const std::vector<OraclePixel>& oracle,
         const OraclePixel& o = oracle[i];
         const ModeSample& s = samples[i];
         switch (classifyPixel(o, s, band)) {
-        case PixelVerdict::Silhouette: ++m.silhouette; continue;
-        case PixelVerdict::Flip: ++m.flips; continue;
-        case PixelVerdict::WrongId: ++m.wrongId; continue;
-        case PixelVerdict::BothMiss: continue;
-        case PixelVerdict::Compared: break;
+            case PixelVerdict::Silhouette:
+                ++m.silhouette;
+                continue;
+            case PixelVerdict::Flip:
+                ++m.flips;
+                continue;
+            case PixelVerdict::WrongId:
+                ++m.wrongId;
+                continue;
+            case PixelVerdict::BothMiss:
+                continue;
+            case PixelVerdict::Compared:
+                break;
         }
         ++m.compared;
         const double tTrue = double(o.hit.t);

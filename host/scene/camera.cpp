@@ -129,8 +129,9 @@ std::vector<glm::vec3> hitPoints(const Frame& frame, const CameraBasis& camera,
             const size_t i = frame.index(x, y);
             const double t = frame.depth[i];
             if (!std::isfinite(t)) continue;
-            points[i] = glm::vec3(camera.eye + t * primaryDirection(camera, settings,
-                                                                    jitteredSample(x, y, settings, 0)));
+            points[i] =
+                glm::vec3(camera.eye + t * primaryDirection(camera, settings,
+                                                            jitteredSample(x, y, settings, 0)));
         }
     }
     return points;

@@ -50,7 +50,8 @@ protected:
     }
     std::vector<std::string> filesInDir() const {
         std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+        for (const auto& entry : fs::directory_iterator(dir))
+            names.push_back(entry.path().filename().string());
         return names;
     }
 
@@ -64,23 +65,29 @@ std::vector<std::uint32_t> bits(const std::vector<float>& values) {
     return out;
 }
 
-const std::vector<std::string> kAovChannels{"R", "G", "B", "Z", "N.X", "N.Y", "N.Z",
-                                            "id", "P.X", "P.Y", "P.Z"};
+const std::vector<std::string> kAovChannels{"R",   "G",  "B",   "Z",   "N.X", "N.Y",
+                                            "N.Z", "id", "P.X", "P.Y", "P.Z"};
 
 // A 3x2 frame with values a clamp, a rounding or a half-float store would change.
 Frame awkwardFrame() {
     Frame frame(3, 2);
     const float denormal = std::numeric_limits<float>::denorm_min();
-    frame.color = {{0.1f, 2.5f, -0.25f}, {1e-30f, 65504.0f * 4, denormal}, {0, -0.0f, 1},
-                   {std::nanf(""), kInf, 0.333333343f}, {1, 1, 1}, {0.5f, 0.25f, 0.125f}};
+    frame.color = {{0.1f, 2.5f, -0.25f},
+                   {1e-30f, 65504.0f * 4, denormal},
+                   {0, -0.0f, 1},
+                   {std::nanf(""), kInf, 0.333333343f},
+                   {1, 1, 1},
+                   {0.5f, 0.25f, 0.125f}};
     frame.depth = {1.0f / 3, kInf, 12345.678f, 1e-7f, 7.0f, 0.5f};
-    frame.normal = {{0, 0, 1}, {0, 0, 0}, {0.6f, 0.8f, 0}, {-1, 0, 0}, {0, -1, 0}, {0.267261f, 0.534522f, 0.801784f}};
+    frame.normal = {{0, 0, 1},  {0, 0, 0},  {0.6f, 0.8f, 0},
+                    {-1, 0, 0}, {0, -1, 0}, {0.267261f, 0.534522f, 0.801784f}};
     frame.id = {0, -1, 16777215, 2, 41, 7};
     return frame;
 }
 
 std::vector<glm::vec3> awkwardHitPoints() {
-    return {{1, 2, 3}, {0, 0, 0}, {-1e7f, 3.25f, 1e-20f}, {0.1f, 0.2f, 0.3f}, {5, 6, 7}, {-8, -9, -10}};
+    return {{1, 2, 3},          {0, 0, 0}, {-1e7f, 3.25f, 1e-20f},
+            {0.1f, 0.2f, 0.3f}, {5, 6, 7}, {-8, -9, -10}};
 }
 
 TEST_F(ExrIo, AovFileHoldsEveryLayerBitForBit) {
@@ -112,9 +119,12 @@ TEST_F(ExrIo, AovFileHoldsEveryLayerBitForBit) {
     const char* const colours[] = {"R", "G", "B"};
     const char* const axes[] = {"X", "Y", "Z"};
     for (int c = 0; c < 3; ++c) {
-        EXPECT_EQ(bits(channel(colours[c])), column([&](size_t i) { return frame.color[i][c]; })) << colours[c];
-        EXPECT_EQ(bits(channel(std::string("N.") + axes[c])), column([&](size_t i) { return frame.normal[i][c]; }));
-        EXPECT_EQ(bits(channel(std::string("P.") + axes[c])), column([&](size_t i) { return points[i][c]; }));
+        EXPECT_EQ(bits(channel(colours[c])), column([&](size_t i) { return frame.color[i][c]; }))
+            << colours[c];
+        EXPECT_EQ(bits(channel(std::string("N.") + axes[c])),
+                  column([&](size_t i) { return frame.normal[i][c]; }));
+        EXPECT_EQ(bits(channel(std::string("P.") + axes[c])),
+                  column([&](size_t i) { return points[i][c]; }));
     }
     EXPECT_EQ(bits(channel("Z")), bits(frame.depth));
     EXPECT_EQ(channel("id"), (std::vector<float>{0, -1, 16777215, 2, 41, 7}));
@@ -134,7 +144,8 @@ TEST_F(ExrIo, ImageIsLinearUnclampedFloatAndReadsBack) {
     EXPECT_EQ(back.height, 2);
     EXPECT_EQ(back.channels, 3);
     EXPECT_EQ(bits(back.pixels), bits(colour.pixels));
-    EXPECT_EQ(exrChannelNames(readBytes("c.EXR"), "c.EXR"), (std::vector<std::string>{"B", "G", "R"}));
+    EXPECT_EQ(exrChannelNames(readBytes("c.EXR"), "c.EXR"),
+              (std::vector<std::string>{"B", "G", "R"}));
     EXPECT_FALSE(hasIdChannel(path("c.EXR")));
 
     const Image grey{3, 1, 1, {0.25f, -3, 100}};
@@ -148,20 +159,25 @@ TEST_F(ExrIo, ImageIsLinearUnclampedFloatAndReadsBack) {
 // OpenEXR's own tool (Debian's openexr package) lists vkray's layers.
 TEST_F(ExrIo, ExrheaderListsTheLayers) {
     if (std::system("command -v exrheader > /dev/null 2>&1") != 0)
-        GTEST_SKIP() << "exrheader is not installed (Debian package openexr; scripts/install-deps.sh)";
+        GTEST_SKIP()
+            << "exrheader is not installed (Debian package openexr; scripts/install-deps.sh)";
     writeAovs(path("aov.exr"), awkwardFrame(), awkwardHitPoints());
     FILE* pipe = ::popen(("exrheader " + path("aov.exr") + " 2>&1").c_str(), "r");
     ASSERT_NE(pipe, nullptr);
     std::string listing;
     std::array<char, 4096> buffer;
-    for (size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;) listing.append(buffer.data(), n);
+    for (size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;)
+        listing.append(buffer.data(), n);
     ASSERT_EQ(::pclose(pipe), 0) << listing;
-    // "channels (type chlist):" then a line per channel: "    N.X, 32-bit floating-point, sampling 1 1".
+    // "channels (type chlist):" then a line per channel: "    N.X, 32-bit floating-point, sampling
+    // 1 1".
     const size_t channels = listing.find("channels (type chlist):");
     ASSERT_NE(channels, std::string::npos) << listing;
     for (const std::string& name : kAovChannels)
-        EXPECT_NE(listing.find("\n    " + name + ", 32-bit floating-point", channels), std::string::npos)
-            << name << " not listed:\n" << listing;
+        EXPECT_NE(listing.find("\n    " + name + ", 32-bit floating-point", channels),
+                  std::string::npos)
+            << name << " not listed:\n"
+            << listing;
     EXPECT_NE(listing.find("compression (type compression): zip"), std::string::npos) << listing;
 }
 
@@ -169,17 +185,20 @@ TEST_F(ExrIo, ExrheaderListsTheLayers) {
 // 2x2 tiles with PIZ compression; every layer reads back the same bits.
 TEST_F(ExrIo, ReadsATiledPizCopyMadeByOpenExrsTools) {
     if (std::system("command -v exrmaketiled > /dev/null 2>&1") != 0)
-        GTEST_SKIP() << "exrmaketiled is not installed (Debian package openexr; scripts/install-deps.sh)";
+        GTEST_SKIP()
+            << "exrmaketiled is not installed (Debian package openexr; scripts/install-deps.sh)";
     writeAovs(path("aov.exr"), awkwardFrame(), awkwardHitPoints());
-    ASSERT_EQ(std::system(("exrmaketiled -t 2 2 -z piz " + path("aov.exr") + " " + path("tiled.exr") +
-                           " > /dev/null 2>&1").c_str()),
+    ASSERT_EQ(std::system(("exrmaketiled -t 2 2 -z piz " + path("aov.exr") + " " +
+                           path("tiled.exr") + " > /dev/null 2>&1")
+                              .c_str()),
               0);
     const ExrImage original = decodeExr(readBytes("aov.exr"), "aov.exr", kAovChannels);
     const ExrImage tiled = decodeExr(readBytes("tiled.exr"), "tiled.exr", kAovChannels);
     ASSERT_EQ(tiled.width, 3);
     ASSERT_EQ(tiled.height, 2);
     for (size_t c = 0; c < kAovChannels.size(); ++c)
-        EXPECT_EQ(bits(tiled.channels[c].values), bits(original.channels[c].values)) << kAovChannels[c];
+        EXPECT_EQ(bits(tiled.channels[c].values), bits(original.channels[c].values))
+            << kAovChannels[c];
     EXPECT_NE(readBytes("tiled.exr"), readBytes("aov.exr"));  // another file, the same pixels
 }
 
@@ -194,7 +213,8 @@ TEST_F(ExrIo, BadFilesAreRefusedWithTheirName) {
     // Cut at every eighth of its length: never an image, always a message.
     for (size_t cut = 4; cut < good.size(); cut += good.size() / 8) {
         const std::string message = errorOf([&] { decodeImage(good.substr(0, cut), "cut.exr"); });
-        EXPECT_EQ(message.rfind("cut.exr: not a readable OpenEXR file (", 0), 0u) << cut << ": " << message;
+        EXPECT_EQ(message.rfind("cut.exr: not a readable OpenEXR file (", 0), 0u)
+            << cut << ": " << message;
     }
     // Garbage after a good header: the pixel data is unreadable.
     std::string garbled = good;
@@ -232,20 +252,28 @@ TEST_F(ExrIo, AHeaderAskingForTooManyPixelsIsRefusedBeforeReading) {
               "empty.exr: not a readable OpenEXR file (its data window is empty)");
     // Channels enough to make OpenEXR's line buffers huge: refused from the header.
     ExrImage wide{5000, 1, {}};
-    for (int c = 0; c < 210; ++c) wide.channels.push_back({"c" + std::to_string(c), std::vector<float>(5000)});
-    EXPECT_EQ(errorOf([&] { decodeImage(encodeExr(wide, "wide.exr"), "wide.exr"); }),
-              "wide.exr: the OpenEXR file has 210 channels of 5000 pixels a line, above vkray's limit "
-              "of 256 channels and 1048576 values a line");
+    for (int c = 0; c < 210; ++c)
+        wide.channels.push_back({"c" + std::to_string(c), std::vector<float>(5000)});
+    EXPECT_EQ(
+        errorOf([&] { decodeImage(encodeExr(wide, "wide.exr"), "wide.exr"); }),
+        "wide.exr: the OpenEXR file has 210 channels of 5000 pixels a line, above vkray's limit "
+        "of 256 channels and 1048576 values a line");
     ExrImage many{1, 1, {}};
     for (int c = 0; c < 257; ++c) many.channels.push_back({"c" + std::to_string(c), {0}});
-    EXPECT_EQ(errorOf([&] { decodeImage(encodeExr(many, "many.exr"), "many.exr"); }).find("has 257 channels"),
+    EXPECT_EQ(errorOf([&] {
+                  decodeImage(encodeExr(many, "many.exr"), "many.exr");
+              }).find("has 257 channels"),
               std::string("many.exr: the OpenEXR file ").size());
 }
 
 TEST_F(ExrIo, WritesNothingForImagesItCannotWrite) {
-    EXPECT_EQ(errorOf([&] { encodeExr(ExrImage{2, 1, {{"R", {1}}}}, "short.exr"); }),
+    EXPECT_EQ(errorOf([&] {
+                  encodeExr(ExrImage{2, 1, {{"R", {1}}}}, "short.exr");
+              }),
               "cannot write short.exr: channel R holds 1 values, the image 2 pixels");
-    EXPECT_EQ(errorOf([&] { encodeExr(ExrImage{1, 1, {{"R", {1}}, {"R", {2}}}}, "twice.exr"); }),
+    EXPECT_EQ(errorOf([&] {
+                  encodeExr(ExrImage{1, 1, {{"R", {1}}, {"R", {2}}}}, "twice.exr");
+              }),
               "cannot write twice.exr: two channels are named R");
     EXPECT_THROW(writeImage(path("empty.exr"), Image{}), Error);
     EXPECT_THROW(writeAovs(path("few.exr"), awkwardFrame(), {}), Error);  // no hit points

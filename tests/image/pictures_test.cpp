@@ -13,9 +13,11 @@ namespace {
 
 TEST(Pictures, ShrinkAveragesOrKeepsTheLargestOfEachBlockEdgesIncluded) {
     // 5 x 3, factor 2: blocks of 2x2, 1x2 at the right, 2x1 at the bottom, 1x1 in the corner.
+    // clang-format off
     Image values{5, 3, 1, {1, 2, 3, 4, 5,
                            6, 7, 8, 9, 10,
                            11, 12, 13, 14, 15}};
+    // clang-format on
     const Image mean = shrink(values, 2, Shrink::Average);
     ASSERT_EQ(mean.width, 3);
     ASSERT_EQ(mean.height, 2);

@@ -229,7 +229,8 @@ struct XmlElement {
         std::vector<const XmlElement*> found;
         for (const XmlElement& child : children) {
             const std::string classes = " " + child.attribute("class") + " ";
-            if (child.name == tag && (cls.empty() || classes.find(" " + cls + " ") != std::string::npos))
+            if (child.name == tag &&
+                (cls.empty() || classes.find(" " + cls + " ") != std::string::npos))
                 found.push_back(&child);
             for (const XmlElement* below : child.all(tag, cls)) found.push_back(below);
         }
@@ -252,7 +253,11 @@ inline std::string decodeEntities(const std::string& s) {
         }
         const size_t semi = s.find(';', i);
         const std::string name = s.substr(i + 1, semi - i - 1);
-        out += name == "amp" ? "&" : name == "lt" ? "<" : name == "gt" ? ">" : name == "quot" ? "\"" : "?";
+        out += name == "amp"    ? "&"
+               : name == "lt"   ? "<"
+               : name == "gt"   ? ">"
+               : name == "quot" ? "\""
+                                : "?";
         i = semi;
     }
     return out;
@@ -298,7 +303,8 @@ inline XmlElement parseXml(const std::string& s) {
 
 // RFC 4648 base64 back to bytes; throws std::runtime_error on a bad digit or length.
 inline std::string fromBase64(const std::string& text) {
-    static const std::string digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static const std::string digits =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     if (text.size() % 4) throw std::runtime_error("base64: length not a multiple of 4");
     std::string out;
     for (size_t i = 0; i < text.size(); i += 4) {
@@ -307,8 +313,10 @@ inline std::string fromBase64(const std::string& text) {
         for (size_t k = 0; k < 4; ++k) {
             const char c = text[i + k];
             const size_t d = digits.find(c);
-            if (c == '=' && i + 4 == text.size() && k >= 2) ++pad;
-            else if (d == std::string::npos || pad) throw std::runtime_error("base64: bad digit");
+            if (c == '=' && i + 4 == text.size() && k >= 2)
+                ++pad;
+            else if (d == std::string::npos || pad)
+                throw std::runtime_error("base64: bad digit");
             v = v << 6 | (c == '=' ? 0u : unsigned(d));
         }
         out += char(v >> 16);

@@ -105,7 +105,8 @@ Image embeddedImage(const test::XmlElement& img) {
     const std::string src = img.attribute("src"), prefix = "data:image/png;base64,";
     EXPECT_EQ(src.rfind(prefix, 0), 0u) << src.substr(0, 40);
     const Image image = decodeImage(test::fromBase64(src.substr(prefix.size())), "embedded.png");
-    const int width = std::stoi(img.attribute("width")), height = std::stoi(img.attribute("height"));
+    const int width = std::stoi(img.attribute("width")),
+              height = std::stoi(img.attribute("height"));
     EXPECT_EQ(width % image.width, 0) << width << " for " << image.width;
     EXPECT_EQ(width / image.width * image.height, height);
     return image;
@@ -138,16 +139,18 @@ TEST(ReportWriter, HtmlEmbedsPicturesWithScalesAndLegends) {
     Report report = sampleReport();
     report.plots[0].points[2].series = report.plots[0].points[3].series = "same series";
     const Image picture{4, 3, 3, [] {
-        std::vector<float> v;
-        for (int i = 0; i < 36; ++i) v.push_back(float(i * 7 % 256) / 255);
-        return v;
-    }()};
+                            std::vector<float> v;
+                            for (int i = 0; i < 36; ++i) v.push_back(float(i * 7 % 256) / 255);
+                            return v;
+                        }()};
     const Image heat = heatMap(Image{2, 1, 1, {0, 1}}, HeatScale{1e-4, 1});
     Gallery gallery;
     gallery.title = "Pictures & more";
     gallery.legend = {{"#ff00ff", "flip"}, {"#00ffff", "acne"}};
-    gallery.groups = {{"first", "a note", {{"image", pngBytes(picture), std::nullopt, ""},
-                                           {"error", pngBytes(heat), HeatScale{1e-4, 1}, "colour error"}}},
+    gallery.groups = {{"first",
+                       "a note",
+                       {{"image", pngBytes(picture), std::nullopt, ""},
+                        {"error", pngBytes(heat), HeatScale{1e-4, 1}, "colour error"}}},
                       {"second", "", {{"image", pngBytes(picture), std::nullopt, ""}}}};
     report.galleries = {gallery};
     const std::string html = toHtml(report);
@@ -160,8 +163,8 @@ TEST(ReportWriter, HtmlEmbedsPicturesWithScalesAndLegends) {
     const auto legends = svgs[0]->all("g", "legend");
     ASSERT_EQ(legends.size(), 1u);
     const std::vector<std::string> legendTexts = svgTexts(*legends[0]);
-    EXPECT_EQ(legendTexts, (std::vector<std::string>{"legend", "slow exact", "fast <rough>", "same series",
-                                                     "flagged", "Pareto front"}));
+    EXPECT_EQ(legendTexts, (std::vector<std::string>{"legend", "slow exact", "fast <rough>",
+                                                     "same series", "flagged", "Pareto front"}));
     EXPECT_EQ(legends[0]->all("circle").size(), 4u);  // three series and the flagged mark
     EXPECT_EQ(legends[0]->all("line").size(), 1u);    // the front's dashes
 
@@ -189,8 +192,8 @@ TEST(ReportWriter, HtmlEmbedsPicturesWithScalesAndLegends) {
     EXPECT_TRUE(figures[0]->all("svg").empty());
     const auto scale = figures[1]->all("svg", "scale");
     ASSERT_EQ(scale.size(), 1u);
-    EXPECT_EQ(svgTexts(*scale[0]),
-              (std::vector<std::string>{"\u22641e-4", "1e-3", "1e-2", "1e-1", "1", "colour error"}));
+    EXPECT_EQ(svgTexts(*scale[0]), (std::vector<std::string>{"\u22641e-4", "1e-3", "1e-2", "1e-1",
+                                                             "1", "colour error"}));
     EXPECT_EQ(scale[0]->all("rect").size(), 61u);  // 60 steps and the frame
 }
 
@@ -283,12 +286,15 @@ TEST_F(NumericsCli, StressWritesTableCsvJsonHtml) {
         const Image image = embeddedImage(*images[i]);
         EXPECT_EQ(image.width, 24);
         EXPECT_EQ(image.height, 18);
-        if (i > 0) EXPECT_EQ(captions[i]->allText().find(std::array{"naive", "robust", "fp64"}[i - 1]), 0u);
+        if (i > 0)
+            EXPECT_EQ(captions[i]->allText().find(std::array{"naive", "robust", "fp64"}[i - 1]),
+                      0u);
     }
     const auto marks = page.all("span", "swatch");
     ASSERT_EQ(marks.size(), 3u);  // flips, wrong ids, acne
     const std::string legendText = page.all("div", "legend").at(0)->allText();
-    for (const char* mark : {"flip", "wrong id", "acne"}) EXPECT_NE(legendText.find(mark), std::string::npos) << mark;
+    for (const char* mark : {"flip", "wrong id", "acne"})
+        EXPECT_NE(legendText.find(mark), std::string::npos) << mark;
 
     EXPECT_NE(run.output.find("result: 4 of 4 rows as expected (PASS)"), std::string::npos) << run.output;
 
