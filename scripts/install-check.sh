@@ -91,5 +91,9 @@ case "$depends" in
   *libvulkan1*) ;;
   *) fail "$(basename "$deb") Depends lacks libvulkan1: $depends" ;;
 esac
+case "$depends" in  # dpkg-shlibdeps' find: the binary links OpenEXR (.exr output)
+  *libopenexr*) ;;
+  *) fail "$(basename "$deb") Depends lacks OpenEXR's library (libopenexr-3-1-30): $depends" ;;
+esac
 echo "install-check: $(basename "$deb"): Depends: $depends"
 echo "install-check: ok"

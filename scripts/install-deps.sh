@@ -8,6 +8,8 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
   glslang-dev glslang-tools spirv-tools
   libglm-dev libstb-dev
+  libopenexr-dev  # OpenEXR 3: -o X.exr, --aov X.exr and compare reading .exr
+  openexr  # its tools (exrheader): the tests check that they list vkray's layers
   libgtest-dev
   clang libclang-rt-dev  # scripts/fuzz.sh: clang and its libFuzzer/sanitizer runtimes
   libopenmpi-dev openmpi-bin  # rendering across MPI ranks (docs/mpi.md)

@@ -271,13 +271,20 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
     }
 
     if (stopRequested()) throw Interrupted();
-    files.stageImage(output, colorImage(frame));
-    if (!o.aovPrefix.empty()) files.stageAovs(o.aovPrefix, frame);
+    // `-o X.exr --aov X.exr`: the AOV file holds the image too (R, G, B).
+    const bool imageInAovs =
+        !o.aovPrefix.empty() && isExrPath(o.aovPrefix) &&
+        fs::path(output).lexically_normal() == fs::path(o.aovPrefix).lexically_normal();
+    if (!imageInAovs) files.stageImage(output, colorImage(frame));
+    if (!o.aovPrefix.empty())
+        files.stageAovs(
+            o.aovPrefix, frame,
+            isExrPath(o.aovPrefix) ? hitPoints(frame, camera, settings) : std::vector<glm::vec3>{});
     if (stopRequested()) throw Interrupted();
     files.commit();
     if (!o.diffPath.empty()) out << "wrote " << o.diffPath << "\n";
-    out << "wrote " << output << "\n";
-    if (!o.aovPrefix.empty()) out << "wrote " << o.aovPrefix << ".depth.pfm, .normal.pfm, .id.pfm\n";
+    if (!imageInAovs) out << "wrote " << output << "\n";
+    if (!o.aovPrefix.empty()) out << "wrote " << aovFilesText(o.aovPrefix) << "\n";
     return passed ? 0 : 2;
 }
 
@@ -391,21 +398,29 @@ int runFeatures(const Options& o, std::ostream& out, std::ostream& err) {
     return 0;
 }
 
+// Where an image's object ids are, as `render` writes them: the image's own id
+// channel (X.exr from --aov X.exr), X.id.pfm (--aov X) or X.exr with an id
+// channel beside it (-o X.png --aov X.exr); "" when none is there.
+std::string idsBeside(const std::string& image) {
+    if (hasIdChannel(image)) return image;
+    const std::string stem = fs::path(image).replace_extension().string();
+    if (fs::exists(stem + ".id.pfm")) return stem + ".id.pfm";
+    if (fs::exists(stem + ".exr") && hasIdChannel(stem + ".exr")) return stem + ".exr";
+    return "";
+}
+
 int runCompare(const Options& o, std::ostream& out) {
     const Image a = readImage(o.imageA), b = readImage(o.imageB);
     if (!o.diffPath.empty()) requireWritableFolder(o.diffPath, "--diff");
     const CompareOptions tolerance{o.failThreshold.value_or(CompareOptions{}.failThreshold),
                                    o.failPercent.value_or(CompareOptions{}.failPercent)};
-    // Ids: given with --ids, or found beside the images as written by
-    // `render -o X.png --aov X` (X.id.pfm).
+    // Ids: given with --ids, or found for both images with idsBeside().
     std::string idsPathA = o.idsA, idsPathB = o.idsB;
     if (idsPathA.empty()) {
-        const auto beside = [](const std::string& image) {
-            return fs::path(image).replace_extension().string() + ".id.pfm";
-        };
-        if (fs::exists(beside(o.imageA)) && fs::exists(beside(o.imageB))) {
-            idsPathA = beside(o.imageA);
-            idsPathB = beside(o.imageB);
+        const std::string besideA = idsBeside(o.imageA), besideB = idsBeside(o.imageB);
+        if (!besideA.empty() && !besideB.empty()) {
+            idsPathA = besideA;
+            idsPathB = besideB;
             out << "object ids from " << idsPathA << " and " << idsPathB << "\n";
         }
     }
@@ -414,7 +429,7 @@ int runCompare(const Options& o, std::ostream& out) {
     if (idsPathA.empty()) {
         passed = compareAndReport(a, b, nullptr, nullptr, tolerance, o.diffPath, files, out);
     } else {
-        const Image idsA = readImage(idsPathA), idsB = readImage(idsPathB);
+        const Image idsA = readIds(idsPathA), idsB = readIds(idsPathB);
         passed = compareAndReport(a, b, &idsA, &idsB, tolerance, o.diffPath, files, out);
     }
     files.commit();

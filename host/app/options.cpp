@@ -182,7 +182,9 @@ std::string usageText() {
     return R"(usage:
   vkray render SCENE.sdl [-o out.png] [options]   render on the GPU (or --cpu)
   vkray pixel SCENE.sdl X Y [options]             trace one pixel on GPU and CPU, side by side
-  vkray compare A B [--ids A.id.pfm B.id.pfm] [--diff FILE] [--fail T] [--failpercent P]
+  vkray compare A B [--ids IDS_A IDS_B] [--diff FILE] [--fail T] [--failpercent P]
+                                                  PNG, PFM, EXR or BMP; ids from .id.pfm or an
+                                                  .exr's id channel (found beside A and B too)
   vkray stress [--cases PATTERN] [--size WxH] [--out DIR]   precision modes against the oracle
   vkray report SCENE.sdl [--size WxH] [--out DIR]          error against run time over the knobs
   vkray features SCENE.sdl [--variant all] [--spp N] [--precision MODE] [--lenient] [-D NAME=VALUE]
@@ -195,13 +197,15 @@ std::string usageText() {
   vkray --version | --help
 
 render options:
-  -o, --output FILE     PNG to write (default: SCENE's name with .png)
+  -o, --output FILE     image to write: .png (default: SCENE's name with .png), .pfm, or
+                        .exr (linear float, unclamped)
   --size WxH            image size (default 640x480; each side <= 16384)
   --device N            Vulkan device index (see `vkray devices`)
   --block N             one ray per NxN block, the block filled with its colour
   --spp N               samples per pixel (1..4096, default 1): stratified, jittered
   --seed S              seed of the sample positions (0..4294967295, default 0)
   --aov PREFIX          also write PREFIX.depth.pfm, PREFIX.normal.pfm, PREFIX.id.pfm
+  --aov NAME.exr        ... or one OpenEXR file: R,G,B  Z  N.X,N.Y,N.Z  id  P.X,P.Y,P.Z
   --cpu                 render with the CPU reference instead of the GPU
   --check               render with both and compare (exit 2 beyond tolerance)
   --diff FILE           with --check: write a diff image
@@ -286,7 +290,8 @@ Options parseOptions(const std::vector<std::string>& args) {
             arg = arg.substr(0, eq);
         }
         if (o.command == Command::Compare && arg == "--ids") {
-            if (i + 2 >= args.size()) throw Error("--ids: expected two files, A.id.pfm B.id.pfm");
+            if (i + 2 >= args.size())
+                throw Error("--ids: expected two files, A.id.pfm B.id.pfm (or A.exr B.exr)");
             o.idsA = args[++i];
             o.idsB = args[++i];
             continue;

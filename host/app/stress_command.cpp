@@ -2,9 +2,11 @@
 
 #include "app/commands.h"
 #include "app/data_folder.h"
+#include "dist/bytes.h"
 #include "dist/job_hand_out.h"
 #include "gpu/context.h"
 #include "numerics/report_sweep.h"
+#include "numerics/stress_pictures.h"
 #include "numerics/stress_report.h"
 #include "numerics/stress_suite.h"
 #include "scene/error.h"
@@ -77,17 +79,29 @@ int runStress(const Options& o, std::ostream& out, std::ostream& err) {
     options.threads = o.threads;
     if (o.precisionGiven) options.gpuModes = {o.precision};
     // Under mpirun the cases are handed out across the ranks; rank 0 reports.
+    // Each case's result: its rows, then its pictures.
     const std::vector<std::string> results =
         dist::runJobsAcrossRanks(world, cases.size(), [&](std::size_t job) {
-            return numerics::encodeRows(numerics::runStressCase(cases[job], &context, options, &err));
+            numerics::StressPicture picture;
+            const auto caseRows =
+                numerics::runStressCase(cases[job], &context, options, &err, &picture);
+            dist::ByteWriter writer;
+            writer << numerics::encodeRows(caseRows) << numerics::encodePicture(picture);
+            return writer.bytes();
         });
     if (world.rank() != 0) return 0;
     std::vector<numerics::ModeMetrics> rows;
+    std::vector<numerics::StressPicture> pictures;
     for (const std::string& result : results) {
-        const std::vector<numerics::ModeMetrics> caseRows = numerics::decodeRows(result);
+        dist::ByteReader reader(result);
+        std::string rowBytes, pictureBytes;
+        reader >> rowBytes >> pictureBytes;
+        const std::vector<numerics::ModeMetrics> caseRows = numerics::decodeRows(rowBytes);
         rows.insert(rows.end(), caseRows.begin(), caseRows.end());
+        pictures.push_back(numerics::decodePicture(pictureBytes));
     }
-    const numerics::Report report = numerics::stressReport(rows, cases, commandLine(o, "stress"), device);
+    numerics::Report report = numerics::stressReport(rows, cases, commandLine(o, "stress"), device);
+    numerics::addStressPictures(report, pictures);
     out << numerics::formatTable(report.table);
     numerics::writeReportFiles(report, outDirectory, "stress", out);
     // Robust and double must pass every case; naive must fail those built to

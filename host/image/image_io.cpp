@@ -1,5 +1,7 @@
 #include "image/image_io.h"
 
+#include "image/exr_io.h"
+
 #include <fcntl.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -52,17 +54,35 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
-enum class Format { Png, Pfm, Bmp };
+enum class Format { Png, Pfm, Exr, Bmp };
 
-// What vkray writes (.png, .pfm), or with `reading` also what it reads
+// What vkray writes (.png, .pfm, .exr), or with `reading` also what it reads
 // (.bmp: Hill's pixmaps).
 Format formatOf(const std::string& path, bool reading) {
     const std::string ext = lowerExtension(path);
     if (ext == ".png") return Format::Png;
     if (ext == ".pfm") return Format::Pfm;
+    if (ext == ".exr") return Format::Exr;
     if (ext == ".bmp" && reading) return Format::Bmp;
-    throw Error(path + ": unsupported image format '" + ext + "' (use .png or .pfm" +
+    throw Error(path + ": unsupported image format '" + ext + "' (use .png, .pfm or .exr" +
                 (reading ? ", or .bmp to read)" : ")"));
+}
+
+// An EXR's colour: R, G, B, else Y (what writeImage writes for 1 channel).
+Image decodeExrImage(const std::string& path, const std::string& bytes) {
+    const std::vector<std::string> names = exrChannelNames(bytes, path);
+    const auto has = [&](const char* name) {
+        return std::find(names.begin(), names.end(), name) != names.end();
+    };
+    std::vector<std::string> wanted{"R", "G", "B"};
+    if (!(has("R") && has("G") && has("B")) && has("Y")) wanted = {"Y"};
+    const ExrImage exr = decodeExr(bytes, path, wanted);
+    Image image{exr.width, exr.height, int(wanted.size()), {}};
+    image.pixels.resize(size_t(exr.width) * size_t(exr.height) * wanted.size());
+    for (size_t c = 0; c < wanted.size(); ++c)
+        for (size_t i = 0; i < exr.channels[c].values.size(); ++i)
+            image.pixels[i * wanted.size() + c] = exr.channels[c].values[i];
+    return image;
 }
 
 void requireWritable(const std::string& path, const Image& image) {
@@ -462,6 +482,11 @@ Image idImage(const Frame& frame) {
     return image;
 }
 
+std::string pngBytes(const Image& image) {
+    requireWritable("a PNG image", image);
+    return encodePng("a PNG image", image);
+}
+
 void writeImage(const std::string& path, const Image& image) {
     StagedFiles files;
     files.stageImage(path, image);
@@ -472,8 +497,26 @@ Image decodeImage(const std::string& bytes, const std::string& path) {
     switch (formatOf(path, true)) {
     case Format::Png: return decodePng(path, bytes);
     case Format::Bmp: return decodeBmp(path, bytes);
+    case Format::Exr:
+        return decodeExrImage(path, bytes);
     default: return decodePfm(path, bytes);
     }
+}
+
+Image readIds(const std::string& path) {
+    if (formatOf(path, true) != Format::Exr) return readImage(path);
+    const ExrImage exr = decodeExr(readFile(path), path, {kExrIdChannel});
+    return Image{exr.width, exr.height, 1, exr.channels.front().values};
+}
+
+bool hasIdChannel(const std::string& path) {
+    if (!isExrPath(path)) return false;
+    const std::vector<std::string> names = exrChannelNames(readFile(path), path);
+    return std::find(names.begin(), names.end(), kExrIdChannel) != names.end();
+}
+
+bool isExrPath(const std::string& path) {
+    return lowerExtension(path) == ".exr";
 }
 
 Image readImage(const std::string& path) {
@@ -487,10 +530,16 @@ void writeFileAtomically(const std::string& path, const std::string& bytes) {
     files.commit();
 }
 
-void writeAovs(const std::string& prefix, const Frame& frame) {
+void writeAovs(const std::string& target, const Frame& frame,
+               const std::vector<glm::vec3>& hitPoints) {
     StagedFiles files;
-    files.stageAovs(prefix, frame);
+    files.stageAovs(target, frame, hitPoints);
     files.commit();
+}
+
+std::string aovFilesText(const std::string& target) {
+    if (isExrPath(target)) return target + " (R, G, B, Z, N.X, N.Y, N.Z, id, P.X, P.Y, P.Z)";
+    return target + ".depth.pfm, .normal.pfm, .id.pfm";
 }
 
 // ---- staged files ------------------------------------------------------------
@@ -550,10 +599,18 @@ void StagedFiles::stage(const std::string& path, const std::string& bytes) {
 void StagedFiles::stageImage(const std::string& path, const Image& image) {
     const Format format = formatOf(path, false);
     requireWritable(path, image);
-    stage(path, format == Format::Png ? encodePng(path, image) : encodePfm(image));
+    stage(path, format == Format::Png   ? encodePng(path, image)
+                : format == Format::Exr ? encodeExr(exrFromImage(image), path)
+                                        : encodePfm(image));
 }
 
-void StagedFiles::stageAovs(const std::string& prefix, const Frame& frame) {
+void StagedFiles::stageAovs(const std::string& target, const Frame& frame,
+                            const std::vector<glm::vec3>& hitPoints) {
+    if (isExrPath(target)) {
+        stage(target, encodeExr(aovExr(frame, hitPoints), target));
+        return;
+    }
+    const std::string& prefix = target;
     stageImage(prefix + ".depth.pfm", depthImage(frame));
     stageImage(prefix + ".normal.pfm", normalImage(frame));
     stageImage(prefix + ".id.pfm", idImage(frame));

@@ -1,10 +1,13 @@
 // Reading and writing images: PNG (8-bit sRGB-less, values clamped to [0,1]
-// and rounded) through stb, and PFM (float, lossless) for AOVs. Every write
+// and rounded) through stb, PFM (float, lossless) and OpenEXR (float,
+// lossless, multi-layer: image/exr_io.h) for AOVs. Every write
 // goes to a temporary file in the destination folder and is renamed into
 // place, so a failed run never leaves a partial file.
 #pragma once
 
 #include "image/frame.h"
+
+#include <glm/vec3.hpp>
 
 #include <csignal>
 #include <string>
@@ -26,15 +29,31 @@ Image depthImage(const Frame& frame);   // 1 channel: depth (+inf on a miss)
 Image normalImage(const Frame& frame);  // 3 channels: world normal
 Image idImage(const Frame& frame);      // 1 channel: object id as float (-1 = background)
 
-// By extension: .png (3 channels written as RGB8; 1 channel as grey) or .pfm
+// By extension: .png (3 channels written as RGB8; 1 channel as grey), .pfm
 // (PF for 3 channels, Pf for 1; little-endian, bottom-to-top rows as the
-// format requires). Throws Error naming the path on any failure; the
-// destination is then untouched.
+// format requires) or .exr (float channels R, G, B, or Y for 1 channel;
+// unclamped). Throws Error naming the path on any failure; the destination
+// is then untouched.
 void writeImage(const std::string& path, const Image& image);
 
-// Reads .png or .bmp (any channel count; converted to 3 channels in [0,1])
-// or .pfm (either endianness). Throws Error naming the path.
+// The PNG file writeImage writes, as bytes (for pages that embed images).
+std::string pngBytes(const Image& image);
+
+// Reads .png or .bmp (any channel count; converted to 3 channels in [0,1]),
+// .pfm (either endianness) or .exr (its R, G, B channels, else its Y).
+// Throws Error naming the path.
 Image readImage(const std::string& path);
+
+// Object ids as a 1-channel image: an .exr file's id channel (exr_io.h
+// kExrIdChannel), any other file as readImage reads it (PREFIX.id.pfm).
+Image readIds(const std::string& path);
+
+// Whether `path` is an .exr file with an id channel (false for other
+// extensions). Throws Error when the .exr cannot be read.
+bool hasIdChannel(const std::string& path);
+
+// Whether the path ends in .exr (any case).
+bool isExrPath(const std::string& path);
 
 // The same from bytes already in memory (the format chosen by `path`'s
 // extension; `path` is used only for that and in messages). Refuses images
@@ -51,8 +70,15 @@ inline constexpr long long kMaxImagePixels = 64ll << 20;
 // fsync, rename). Throws Error naming the path.
 void writeFileAtomically(const std::string& path, const std::string& bytes);
 
-// --aov PREFIX: PREFIX.depth.pfm, PREFIX.normal.pfm, PREFIX.id.pfm.
-void writeAovs(const std::string& prefix, const Frame& frame);
+// --aov TARGET. TARGET ending in .exr: one OpenEXR file with every layer
+// (exr_io.h aovExr(): the colour, depth, normal, id and the world hit
+// points `hitPoints`, one per pixel). Otherwise TARGET is a prefix:
+// TARGET.depth.pfm, TARGET.normal.pfm, TARGET.id.pfm (no hit points).
+void writeAovs(const std::string& target, const Frame& frame,
+               const std::vector<glm::vec3>& hitPoints);
+
+// The files writeAovs writes for `target`, for a "wrote ..." line.
+std::string aovFilesText(const std::string& target);
 
 // Files that appear together or not at all (an image, its AOVs, a diff):
 // stage() writes each in full to a temporary file beside its destination
@@ -71,7 +97,8 @@ public:
 
     void stage(const std::string& path, const std::string& bytes);  // throws Error naming path
     void stageImage(const std::string& path, const Image& image);    // as writeImage
-    void stageAovs(const std::string& prefix, const Frame& frame);   // as writeAovs
+    void stageAovs(const std::string& target, const Frame& frame,    // as writeAovs
+                   const std::vector<glm::vec3>& hitPoints);
     void commit();
 
 private:

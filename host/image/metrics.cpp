@@ -100,6 +100,20 @@ void compareIds(const Image& idsA, const Image& idsB, CompareResult& result) {
     // `passed` is left alone: whether id disagreement fails a run is the caller's call.
 }
 
+Image errorImage(const Image& a, const Image& b) {
+    requireSameShape(a, b);
+    const size_t channels = size_t(a.channels);
+    Image error{a.width, a.height, 1, std::vector<float>(a.pixels.size() / channels)};
+    for (size_t i = 0; i < error.pixels.size(); ++i) {
+        double largest = 0;
+        for (size_t c = 0; c < channels; ++c)
+            largest = std::max(largest,
+                               sampleError(a.pixels[i * channels + c], b.pixels[i * channels + c]));
+        error.pixels[i] = float(largest);
+    }
+    return error;
+}
+
 Image diffImage(const Image& a, const Image& b, double scale) {
     requireSameShape(a, b);
     Image diff{a.width, a.height, a.channels, std::vector<float>(a.pixels.size())};

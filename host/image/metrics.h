@@ -38,6 +38,10 @@ CompareResult compareImages(const Image& a, const Image& b, const CompareOptions
 // Adds id mismatch counts (ids must be 1-channel images of the same size).
 void compareIds(const Image& idsA, const Image& idsB, CompareResult& result);
 
+// Per pixel, the error compareImages measures: the largest absolute channel
+// difference of the clamped colours (1 where either is NaN); 1 channel.
+Image errorImage(const Image& a, const Image& b);
+
 // A diff image: per pixel, the absolute difference scaled by `scale` (idiff's
 // --scale; default 1), clamped to [0,1].
 Image diffImage(const Image& a, const Image& b, double scale = 1);

@@ -122,6 +122,7 @@ struct PixelSetup {
     RVec pTrue, nTrue, dTrue;
     Real tTrue;      // the primary hit's distance
     const SceneObject* original;  // the object as the scene has it (for the oracle)
+    size_t pixel;                 // its index, row-major
 };
 
 // The pixels both agree on (same object, outside the float band), with the
@@ -142,6 +143,7 @@ void forAgreeingPixels(const Scene& scene, const CameraBasis& camera,
         const ModeSample& s = samples[i];
         if (o.silhouette[0] || o.hit.id < 0 || s.id != o.hit.id || !std::isfinite(s.t)) continue;
         PixelSetup<T> px;
+        px.pixel = i;
         px.d = toMode<T>(o.direction);
         T t = T(s.t);
         if constexpr (!std::is_same_v<T, float>) {
@@ -194,6 +196,7 @@ FeelerStats shadowFeelerAcneIn(const Scene& scene, const CameraBasis& camera,
         }
         stats.traced += traced;
         stats.failed += failed;
+        if (failed) stats.failedPixels.push_back(px.pixel);
     });
     return stats;
 }
@@ -234,8 +237,10 @@ FeelerStats refractionExitErrorsIn(const Scene& scene, const CameraBasis& camera
         // which is fine until the offset reaches a visible size.
         const RVec exitPoint = toReal(shift) + toRealVec(origin + exit * dIn);
         const RVec exitPointTrue = px.pTrue + exitTrue * dInTrue;
-        stats.failed += !(exit > 0 && Real(exit) > exitTrue / 2 &&
-                          length(exitPoint - exitPointTrue) <= Real(1e-3) * px.tTrue);
+        const bool failed = !(exit > 0 && Real(exit) > exitTrue / 2 &&
+                              length(exitPoint - exitPointTrue) <= Real(1e-3) * px.tTrue);
+        stats.failed += failed;
+        if (failed) stats.failedPixels.push_back(px.pixel);
     });
     return stats;
 }

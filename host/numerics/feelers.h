@@ -34,6 +34,7 @@ namespace vkray::numerics {
 struct FeelerStats {
     std::size_t traced = 0;  // pixels with at least one secondary ray
     std::size_t failed = 0;  // pixels where one of them failed
+    std::vector<std::size_t> failedPixels;  // those pixels' indices (row-major), ascending
 };
 
 // Only pixels where the mode and the oracle hit the same object outside the

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <ostream>
@@ -103,6 +104,17 @@ void forEachMeasurement(Point& p, Visit&& visit) {
     visit(p.ran);
     visit(p.note);
     for (auto* value : {&p.seconds, &p.rmse, &p.maxError, &p.idMismatchPercent}) visit(*value);
+    visit(p.imagePng);
+    visit(p.errorPng);
+}
+
+// The thumbnails of an image, and of its error against the reference when given.
+void makeThumbnails(const Image& image, const Image* reference, SweepPoint& p) {
+    const int factor = shrinkFactorFor(image, kThumbnailWidth);
+    p.imagePng = pngBytes(shrink(image, factor, Shrink::Average));
+    if (reference)
+        p.errorPng = pngBytes(
+            heatMap(shrink(errorImage(image, *reference), factor, Shrink::Largest), kErrorScale));
 }
 
 }  // namespace
@@ -166,8 +178,10 @@ std::vector<SweepPoint> runSweep(const Scene& scene, const Camera& camera, gpu::
                     frame = tracer->render(scene, basis, s, &stats);
                     p.seconds = std::min(p.seconds, stats.renderSeconds);
                 }
-                CompareResult result = compareImages(colorImage(frame), colorImage(reference), {});
+                const Image colour = colorImage(frame), referenceColour = colorImage(reference);
+                CompareResult result = compareImages(colour, referenceColour, {});
                 compareIds(idImage(frame), idImage(reference), result);
+                makeThumbnails(colour, &referenceColour, p);
                 p.ran = true;
                 p.rmse = result.rmse;
                 p.maxError = result.maxAbsError;
@@ -191,6 +205,7 @@ std::vector<SweepPoint> runSweep(const Scene& scene, const Camera& camera, gpu::
         p.ran = true;
         p.seconds = reference.first;
         p.note = "the reference";
+        makeThumbnails(colorImage(reference.second), nullptr, p);
         points.push_back(p);
     }
     return points;
@@ -215,6 +230,7 @@ Report sweepReport(const std::string& scenePath, const std::vector<SweepPoint>& 
         "a fraction of a percent of edge pixels differ in any configuration)."};
     report.table.columns = {"configuration", "size", "time s", "RMSE", "max error", "ids differ %", "note"};
     std::map<std::string, std::pair<Plot, Plot>> plots;  // by size
+    std::map<std::string, Gallery> galleries;            // by size
     for (const SweepPoint& p : points) {
         const std::string size = sizeText(p.config.settings);
         std::vector<std::string> label(p.values.begin(), p.values.end() - 1);  // without the size
@@ -224,6 +240,18 @@ Report sweepReport(const std::string& scenePath, const std::vector<SweepPoint>& 
         report.table.rows.push_back({V::str(text), V::str(size), p.ran ? V::num(p.seconds) : V{},
                                      p.ran ? V::num(p.rmse) : V{}, p.ran ? V::num(p.maxError) : V{},
                                      p.ran ? V::num(p.idMismatchPercent) : V{}, V::str(p.note)});
+        FigureGroup group{text, p.note, {}};
+        if (p.ran && !p.errorPng.empty()) {
+            char note[128];
+            std::snprintf(note, sizeof note, "RMSE %.3g, max error %.3g, %.3g s", p.rmse,
+                          p.maxError, p.seconds);
+            group.note = note;
+        }
+        if (!p.imagePng.empty()) group.figures.push_back({"image", p.imagePng, std::nullopt, ""});
+        if (!p.errorPng.empty())
+            group.figures.push_back({"error against the reference", p.errorPng, kErrorScale,
+                                     "colour error (log scale)"});
+        galleries[size].groups.push_back(std::move(group));
         if (!p.ran) continue;
         auto& [rmsePlot, maxPlot] = plots[size];
         rmsePlot.title = "RMSE against time, " + size;
@@ -231,6 +259,7 @@ Report sweepReport(const std::string& scenePath, const std::vector<SweepPoint>& 
         rmsePlot.xLabel = maxPlot.xLabel = "render time (s)";
         rmsePlot.yLabel = "colour RMSE";
         maxPlot.yLabel = "max colour error";
+        rmsePlot.flaggedMeaning = maxPlot.flaggedMeaning = "ids differ on more than 1 % of pixels";
         const bool flagged = p.idMismatchPercent > 1.0;
         std::string shortLabel;  // "robust b2"
         for (std::string v : label) {
@@ -240,12 +269,25 @@ Report sweepReport(const std::string& scenePath, const std::vector<SweepPoint>& 
             }
             shortLabel += (shortLabel.empty() ? "" : " ") + v;
         }
-        rmsePlot.points.push_back({shortLabel, p.seconds, p.rmse, flagged});
-        maxPlot.points.push_back({shortLabel, p.seconds, p.maxError, flagged});
+        // A colour per precision mode ("cpu double" for the reference).
+        const std::string series =
+            label.front().rfind("precision ", 0) == 0 ? label.front().substr(10) : label.front();
+        rmsePlot.points.push_back({shortLabel, p.seconds, p.rmse, flagged, series});
+        maxPlot.points.push_back({shortLabel, p.seconds, p.maxError, flagged, series});
     }
     for (auto& [size, pair] : plots) {
         report.plots.push_back(pair.first);
         report.plots.push_back(pair.second);
+    }
+    for (auto& [size, gallery] : galleries) {
+        gallery.title = "Pictures, " + size;
+        gallery.paragraphs = {
+            "Each configuration's image, shrunk to at most " + std::to_string(kThumbnailWidth) +
+            " pixels wide (each pixel the mean of those it covers), beside its error against the "
+            "reference of its size as a heat map: each thumbnail pixel shows the largest colour "
+            "error (clamped colours, largest channel) of the pixels it covers, on a log scale from "
+            "1e-4 (and below, exact agreement included: black) to 1 (pale yellow)."};
+        report.galleries.push_back(std::move(gallery));
     }
     return report;
 }

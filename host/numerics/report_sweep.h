@@ -5,6 +5,7 @@
 #pragma once
 
 #include "numerics/precision.h"
+#include "image/pictures.h"
 #include "numerics/report_writer.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
@@ -50,7 +51,14 @@ struct SweepPoint {
     double seconds = 0;  // render time
     double rmse = 0, maxError = 0;  // colour, clamped to [0, 1], against the reference
     double idMismatchPercent = 0;
+    // Thumbnails (PNG, at most kThumbnailWidth wide): the image, and its error
+    // against the reference as a heat map on kErrorScale (none for a reference).
+    std::string imagePng, errorPng;
 };
+
+inline constexpr int kThumbnailWidth = 160;
+// The colour error's heat scale: below 1e-4 (and 0) the cold end, 1 the hot.
+inline constexpr HeatScale kErrorScale{1e-4, 1};
 
 struct SweepOptions {
     int width = 640, height = 480;

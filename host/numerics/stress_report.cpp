@@ -91,6 +91,7 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
         plot.title = c.name;
         plot.xLabel = "render time (s)";
         plot.yLabel = "max relative t error";
+        plot.flaggedMeaning = "flips, wrong ids or acne";
         for (const ModeMetrics& m : rows) {
             if (m.caseName != c.name || !m.ran) continue;
             plot.points.push_back({m.mode, m.seconds, m.tErrMax, m.flips + m.wrongId + m.acne > 0});

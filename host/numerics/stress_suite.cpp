@@ -2,7 +2,9 @@
 
 #include "dist/bytes.h"
 #include "gpu/gpu_tracer.h"
+#include "image/pictures.h"
 #include "numerics/feelers.h"
+#include "numerics/stress_pictures.h"
 #include "reference/scene_intersector.h"
 #include "scene/error.h"
 #include "scene/scene_geometry.h"
@@ -156,6 +158,13 @@ bool withinBounds(const ModeMetrics& m) {
            m.normalErrMax <= normalBound;
 }
 
+PixelVerdict classifyPixel(const OraclePixel& o, const ModeSample& s, int band) {
+    if (o.silhouette[band]) return PixelVerdict::Silhouette;
+    if ((o.hit.id >= 0) != (s.id >= 0)) return PixelVerdict::Flip;
+    if (o.hit.id < 0) return PixelVerdict::BothMiss;
+    return o.hit.id != s.id ? PixelVerdict::WrongId : PixelVerdict::Compared;
+}
+
 ModeMetrics compareWithOracle(const std::vector<OraclePixel>& oracle,
                               const std::vector<ModeSample>& samples, int band) {
     if (oracle.size() != samples.size()) throw Error("internal: oracle and samples differ in size");
@@ -166,18 +175,20 @@ ModeMetrics compareWithOracle(const std::vector<OraclePixel>& oracle,
     for (size_t i = 0; i < oracle.size(); ++i) {
         const OraclePixel& o = oracle[i];
         const ModeSample& s = samples[i];
-        if (o.silhouette[band]) {
-            ++m.silhouette;
-            continue;
-        }
-        if ((o.hit.id >= 0) != (s.id >= 0)) {
-            ++m.flips;
-            continue;
-        }
-        if (o.hit.id < 0) continue;
-        if (o.hit.id != s.id) {
-            ++m.wrongId;
-            continue;
+        switch (classifyPixel(o, s, band)) {
+            case PixelVerdict::Silhouette:
+                ++m.silhouette;
+                continue;
+            case PixelVerdict::Flip:
+                ++m.flips;
+                continue;
+            case PixelVerdict::WrongId:
+                ++m.wrongId;
+                continue;
+            case PixelVerdict::BothMiss:
+                continue;
+            case PixelVerdict::Compared:
+                break;
         }
         ++m.compared;
         const double tTrue = double(o.hit.t);
@@ -230,7 +241,8 @@ std::vector<ModeMetrics> decodeRows(const std::string& bytes) {
 }
 
 std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Context* context,
-                                       const StressOptions& options, std::ostream* log) {
+                                       const StressOptions& options, std::ostream* log,
+                                       StressPicture* picture) {
     const Scene scene = loadScene(stressCase.path, {}, nullptr);
     requireOracleScene(scene);
     if (!scene.camera) throw Error(stressCase.path + ": a stress case must set its camera");
@@ -241,6 +253,11 @@ std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Contex
     const std::vector<OraclePixel> oracle = renderOracle(scene, camera, settings, options.threads);
     if (log)
         *log << stressCase.name << ": oracle " << secondsSince(oracleStart) << " s\n";
+    if (picture) {
+        picture->caseName = stressCase.name;
+        picture->oraclePng = oraclePng(scene, oracle, settings.width, settings.height);
+        picture->shrunkBy = shrinkFactorFor(Image{settings.width, 1, 1, {}}, kStressPictureWidth);
+    }
 
     std::vector<ModeMetrics> rows;
     const auto finish = [&](ModeMetrics m, const std::string& mode, double seconds) {
@@ -268,12 +285,16 @@ std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Contex
         }
         const std::vector<ModeSample> samples = samplesOf(frame);
         // fp64 builds its rays in double: its band is double's.
-        m = compareWithOracle(oracle, samples, precision == Precision::Fp64 ? 1 : 0);
+        const int band = precision == Precision::Fp64 ? 1 : 0;
+        m = compareWithOracle(oracle, samples, band);
         const FeelerStats feelers = stressCase.refraction
                                         ? refractionExitErrors(scene, camera, oracle, samples, precision)
                                         : shadowFeelerAcne(scene, camera, oracle, samples, precision);
         m.feelers = feelers.traced;
         m.acne = feelers.failed;
+        if (picture)
+            picture->modes.push_back(markedPicture(precisionName(precision), frame, oracle, samples,
+                                                   band, feelers.failedPixels));
         finish(m, precisionName(precision), best);
     }
     if (options.cpuDouble) {

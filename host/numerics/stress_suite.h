@@ -89,6 +89,11 @@ struct ModeSample {
     int id;
 };
 
+// What one pixel of a mode is, against the oracle, in the rounding band of
+// float (band 0) or double (band 1): the metrics' categories.
+enum class PixelVerdict { Silhouette, Flip, WrongId, BothMiss, Compared };
+PixelVerdict classifyPixel(const OraclePixel& oracle, const ModeSample& sample, int band);
+
 // The metrics of one mode's samples against the oracle, with the rounding
 // band of float (band 0) or double (band 1).
 ModeMetrics compareWithOracle(const std::vector<OraclePixel>& oracle,
@@ -107,8 +112,12 @@ struct StressOptions {
 std::string encodeRows(const std::vector<ModeMetrics>& rows);
 std::vector<ModeMetrics> decodeRows(const std::string& bytes);
 
-// Runs one case in every mode; `log` (may be null) gets a line per mode.
+struct StressPicture;  // numerics/stress_pictures.h
+
+// Runs one case in every mode; `log` (may be null) gets a line per mode,
+// `picture` (may be null) the case's pictures for the report.
 std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Context* context,
-                                       const StressOptions& options, std::ostream* log);
+                                       const StressOptions& options, std::ostream* log,
+                                       StressPicture* picture = nullptr);
 
 }  // namespace vkray::numerics

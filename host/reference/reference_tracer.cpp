@@ -28,12 +28,7 @@ namespace {
 // The primary ray through image point (px, py), in pixels with y down. The
 // direction is unit, so a hit's t is its distance from the eye.
 Ray primaryRay(const CameraBasis& camera, const RenderSettings& settings, PixelSample s) {
-    const double sx = 2 * s.px / settings.width - 1;   // -1 left .. 1 right
-    const double sy = 1 - 2 * s.py / settings.height;  // -1 bottom .. 1 top
-    const glm::dvec3 direction =
-        glm::normalize(-camera.n + sx * camera.tanHalfFov * camera.aspect * camera.u +
-                       sy * camera.tanHalfFov * camera.v);
-    return {camera.eye, direction};
+    return {camera.eye, primaryDirection(camera, settings, s)};
 }
 
 // What one pixel (or block) shows: the mean colour of its samples, and the

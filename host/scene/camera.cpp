@@ -113,6 +113,30 @@ PixelSample jitteredSample(int x, int y, const RenderSettings& settings, int k) 
     return {x0 + block * dx, y0 + block * dy};
 }
 
+glm::dvec3 primaryDirection(const CameraBasis& camera, const RenderSettings& settings,
+                            PixelSample s) {
+    const double sx = 2 * s.px / settings.width - 1;   // -1 left .. 1 right
+    const double sy = 1 - 2 * s.py / settings.height;  // -1 bottom .. 1 top
+    return glm::normalize(-camera.n + sx * camera.tanHalfFov * camera.aspect * camera.u +
+                          sy * camera.tanHalfFov * camera.v);
+}
+
+std::vector<glm::vec3> hitPoints(const Frame& frame, const CameraBasis& camera,
+                                 const RenderSettings& settings) {
+    std::vector<glm::vec3> points(frame.pixelCount(), glm::vec3(0));
+    for (int y = 0; y < frame.height; ++y) {
+        for (int x = 0; x < frame.width; ++x) {
+            const size_t i = frame.index(x, y);
+            const double t = frame.depth[i];
+            if (!std::isfinite(t)) continue;
+            points[i] =
+                glm::vec3(camera.eye + t * primaryDirection(camera, settings,
+                                                            jitteredSample(x, y, settings, 0)));
+        }
+    }
+    return points;
+}
+
 PixelSample primarySample(int x, int y, int block) {
     if (block <= 1) return {x + 0.5, y + 0.5};
     const int x0 = x - x % block, y0 = y - y % block;

@@ -3,9 +3,13 @@
 // camera.
 #pragma once
 
+#include "image/frame.h"
 #include "scene/scene.h"
 
+#include <glm/vec3.hpp>
+
 #include <cstdint>
+#include <vector>
 
 namespace vkray {
 
@@ -52,5 +56,16 @@ PixelSample primarySample(int x, int y, int block);
 // block 1) plus block times shaders/sampling.h's stratified offset, drawn for
 // settings.seed and the index y0 * width + x0 of the block's first pixel.
 PixelSample jitteredSample(int x, int y, const RenderSettings& settings, int k);
+
+// The unit direction of the primary ray through image point `s`, as
+// CameraBasis describes it.
+glm::dvec3 primaryDirection(const CameraBasis& camera, const RenderSettings& settings,
+                            PixelSample s);
+
+// Each pixel's world hit point: eye + depth times the direction of its
+// sample 0 (the ray whose depth, normal and id a Frame holds), in double,
+// rounded to float; 0 where the depth is not finite (a miss).
+std::vector<glm::vec3> hitPoints(const Frame& frame, const CameraBasis& camera,
+                                 const RenderSettings& settings);
 
 }  // namespace vkray

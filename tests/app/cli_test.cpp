@@ -1,8 +1,14 @@
 // The binary as a user runs it: exit status, messages with their place, and
 // no output file left behind by a failed run.
+#include "image/exr_io.h"
+#include "image/image_io.h"
 #include "support/cli_fixture.h"
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 
 namespace {
 
@@ -22,6 +28,145 @@ TEST_F(Cli, RenderWritesImageAndAovsAndReportsTime) {
     EXPECT_NE(run.output.find("wrote " + path("out.png")), std::string::npos) << run.output;
     for (const char* file : {"out.png", "aov.depth.pfm", "aov.normal.pfm", "aov.id.pfm"})
         EXPECT_TRUE(fs::exists(dir / file)) << file;
+}
+
+// The EXR's layers hold what the PFM set and a float image of the same
+// render hold (GPU renders repeat bit for bit), and P lies on the unit sphere.
+TEST_F(Cli, ExrAovsHoldThePfmLayersAndTheHitPoints) {
+    const std::string s = scene("s.sdl", kGoodScene);
+    RunResult pfm =
+        vkray("render " + s + " -o " + path("a.pfm") + " --aov " + path("a") + " --size 32x24");
+    ASSERT_EQ(pfm.status, 0) << pfm.output;
+    RunResult exr =
+        vkray("render " + s + " -o " + path("b.png") + " --aov " + path("b.exr") + " --size 32x24");
+    ASSERT_EQ(exr.status, 0) << exr.output;
+    EXPECT_NE(exr.output.find("wrote " + path("b.exr") +
+                              " (R, G, B, Z, N.X, N.Y, N.Z, id, P.X, P.Y, P.Z)"),
+              std::string::npos)
+        << exr.output;
+    std::ifstream in(path("b.exr"), std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const vkray::ExrImage layers = vkray::decodeExr(bytes, "b.exr", {});
+    ASSERT_EQ(layers.channels.size(), 11u);
+    const auto channel = [&](const char* name) { return layers.find(name)->values; };
+    const auto plane = [](const vkray::Image& image, int c) {
+        std::vector<float> values;
+        for (size_t i = size_t(c); i < image.pixels.size(); i += size_t(image.channels))
+            values.push_back(image.pixels[i]);
+        return values;
+    };
+    const vkray::Image colour = vkray::readImage(path("a.pfm")),
+                       normal = vkray::readImage(path("a.normal.pfm"));
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(channel(std::array{"R", "G", "B"}[c]), plane(colour, c)) << c;
+        EXPECT_EQ(channel(std::array{"N.X", "N.Y", "N.Z"}[c]), plane(normal, c)) << c;
+    }
+    EXPECT_EQ(channel("Z"), vkray::readImage(path("a.depth.pfm")).pixels);
+    EXPECT_EQ(channel("id"), vkray::readImage(path("a.id.pfm")).pixels);
+    size_t hits = 0;
+    for (size_t i = 0; i < channel("id").size(); ++i) {
+        const glm::vec3 p(channel("P.X")[i], channel("P.Y")[i], channel("P.Z")[i]);
+        if (channel("id")[i] < 0) {
+            EXPECT_EQ(p, glm::vec3(0)) << i;
+            continue;
+        }
+        ++hits;
+        EXPECT_NEAR(glm::length(p), 1.0f, 1e-5f) << i;  // on the unit sphere
+        EXPECT_GT(p.z, 0) << i;                         // the side facing the eye at z = 5
+    }
+    EXPECT_GT(hits, 50u);
+
+    // With blocks and jittered samples P follows sample 0's ray, the one the
+    // other layers hold: it still lies on the sphere.
+    RunResult jittered = vkray("render " + s + " -o " + path("c.png") + " --aov " + path("c.exr") +
+                               " --size 32x24 --spp 4 --block 2 --seed 7");
+    ASSERT_EQ(jittered.status, 0) << jittered.output;
+    std::ifstream jin(path("c.exr"), std::ios::binary);
+    const vkray::ExrImage sampled = vkray::decodeExr(
+        std::string{std::istreambuf_iterator<char>(jin), std::istreambuf_iterator<char>()}, "c.exr",
+        {"id", "P.X", "P.Y", "P.Z"});
+    size_t sampledHits = 0;
+    for (size_t i = 0; i < sampled.channels[0].values.size(); ++i) {
+        if (sampled.channels[0].values[i] < 0) continue;
+        ++sampledHits;
+        const glm::vec3 p(sampled.channels[1].values[i], sampled.channels[2].values[i],
+                          sampled.channels[3].values[i]);
+        EXPECT_NEAR(glm::length(p), 1.0f, 1e-5f) << i;
+    }
+    EXPECT_GT(sampledHits, 50u);
+}
+
+TEST_F(Cli, ExrImageIsLinearAndOneFileHoldsImageAndAovs) {
+    const std::string s =
+        scene("s.sdl", "camera eye 0 0 5\nlight 5 5 5 4 4 4\nsphere\n");  // bright: above 1
+    RunResult image = vkray("render " + s + " -o " + path("x.exr") + " --size 32x24");
+    ASSERT_EQ(image.status, 0) << image.output;
+    const vkray::Image linear = vkray::readImage(path("x.exr"));
+    EXPECT_GT(*std::max_element(linear.pixels.begin(), linear.pixels.end()), 1.0f);  // unclamped
+    RunResult both =
+        vkray("render " + s + " -o " + path("y.exr") + " --aov " + path("y.exr") + " --size 32x24");
+    ASSERT_EQ(both.status, 0) << both.output;
+    EXPECT_EQ(both.output.find("wrote " + path("y.exr") + "\n"), std::string::npos) << both.output;
+    EXPECT_NE(both.output.find("wrote " + path("y.exr") + " (R, G, B,"), std::string::npos)
+        << both.output;
+    EXPECT_EQ(vkray::readImage(path("y.exr")).pixels, linear.pixels);
+    EXPECT_TRUE(vkray::hasIdChannel(path("y.exr")));
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(dir))
+        files.push_back(entry.path().filename().string());
+    std::sort(files.begin(), files.end());
+    EXPECT_EQ(files, (std::vector<std::string>{"s.sdl", "x.exr", "y.exr"}));  // no temporaries
+}
+
+// compare reads EXR like PNG, and finds ids in an EXR's id channel: the
+// image's own, one beside a PNG, or named with --ids.
+TEST_F(Cli, CompareReadsExrAndItsIdChannel) {
+    const std::string s = scene("s.sdl", kGoodScene);
+    ASSERT_EQ(
+        vkray("render " + s + " -o " + path("a.exr") + " --aov " + path("a.exr") + " --size 32x24")
+            .status,
+        0);
+    ASSERT_EQ(
+        vkray("render " + s + " -o " + path("b.png") + " --aov " + path("b.exr") + " --size 32x24")
+            .status,
+        0);
+    ASSERT_EQ(vkray("render " + s + " -o " + path("moved.png") + " --aov " + path("moved.exr") +
+                    " --size 32x24 --look 1,0,0")
+                  .status,
+              0);
+    RunResult same = vkray("compare " + path("a.exr") + " " + path("a.exr"));
+    EXPECT_EQ(same.status, 0) << same.output;
+    EXPECT_NE(same.output.find("object ids from " + path("a.exr") + " and " + path("a.exr")),
+              std::string::npos)
+        << same.output;
+    // The PNG is clamped and rounded to 8 bits: within 1/255 of the EXR's float.
+    RunResult mixed = vkray("compare " + path("b.png") + " " + path("a.exr") + " --fail 0.0021");
+    EXPECT_EQ(mixed.status, 0) << mixed.output;
+    EXPECT_NE(mixed.output.find("object ids from " + path("b.exr") + " and " + path("a.exr")),
+              std::string::npos)
+        << mixed.output;
+    RunResult moved = vkray("compare " + path("a.exr") + " " + path("moved.png") + " --ids " +
+                            path("a.exr") + " " + path("moved.exr") + " --fail 1 --failpercent 1");
+    EXPECT_EQ(moved.status, 2) << moved.output;  // colour within --fail 1, ids far apart
+    EXPECT_NE(moved.output.find("object ids      "), std::string::npos) << moved.output;
+}
+
+TEST_F(Cli, CompareRefusesABrokenExr) {
+    const std::string s = scene("s.sdl", kGoodScene);
+    ASSERT_EQ(vkray("render " + s + " -o " + path("good.exr") + " --size 32x24").status, 0);
+    std::ifstream in(path("good.exr"), std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    std::ofstream(path("cut.exr"), std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    std::ofstream(path("junk.exr"), std::ios::binary) << "GIF89a, not an OpenEXR file";
+    for (const char* bad : {"cut.exr", "junk.exr"}) {
+        RunResult run =
+            vkray("compare " + path("good.exr") + " " + path(bad) + " --diff " + path("diff.png"));
+        EXPECT_EQ(run.status, 1) << run.output;
+        EXPECT_NE(run.output.find("vkray: error: " + path(bad) + ": not a readable OpenEXR file ("),
+                  std::string::npos)
+            << run.output;
+        EXPECT_FALSE(fs::exists(dir / "diff.png"));
+    }
 }
 
 TEST_F(Cli, CpuAndGpuImagesCompareWithinTolerance) {

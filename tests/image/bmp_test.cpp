@@ -73,7 +73,7 @@ TEST(Bmp, EachFormatIsReadOnlyUnderItsOwnNameAndSignature) {
               "x.bmp: truncated BMP: the file ends inside its header (2 bytes)");
     // vkray reads BMP but does not write it.
     EXPECT_EQ(errorOf([] { writeImage("/nonexistent/x.bmp", Image{1, 1, 3, {0, 0, 0}}); }),
-              "/nonexistent/x.bmp: unsupported image format '.bmp' (use .png or .pfm)");
+              "/nonexistent/x.bmp: unsupported image format '.bmp' (use .png, .pfm or .exr)");
 }
 
 TEST(Bmp, OsTwoPalettesAreRefusedRatherThanDecodedBlack) {

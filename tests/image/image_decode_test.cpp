@@ -79,7 +79,7 @@ TEST(DecodeImage, GivesWhatReadImageGivesForTheSameBytes) {
 
 TEST(DecodeImage, ExtensionChoosesTheFormat) {
     EXPECT_EQ(errorOf([] { decodeImage("PF\n1 1\n-1\n", "x.tiff"); }),
-              "x.tiff: unsupported image format '.tiff' (use .png or .pfm, or .bmp to read)");
+              "x.tiff: unsupported image format '.tiff' (use .png, .pfm or .exr, or .bmp to read)");
     // PFM bytes under a .png name are read as PNG, and refused as such.
     EXPECT_EQ(errorOf([] { decodeImage("Pf\n1 1\n-1\n\0\0\0\0", "x.png"); }).rfind("x.png: ", 0),
               0u);

@@ -6,10 +6,14 @@
 #include "scene/scene_geometry.h"
 #include "support/cli_fixture.h"
 #include "support/gpu_fixture.h"
+#include "image/image_io.h"
+#include "image/pictures.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -83,7 +87,9 @@ TEST(ReportWriter, HtmlIsWellFormedWithOneSvgPerPlotAndAParetoFront) {
     // Four points, the zero drawn on its own "0" line, and a front through the
     // three undominated ones (fast, middle, slow exact), not "dominated".
     size_t circles = 0;
-    for (size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1)) ++circles;
+    for (size_t at = svg.find("<circle class=\"point\""); at != std::string::npos;
+         at = svg.find("<circle class=\"point\"", at + 1))
+        ++circles;
     EXPECT_EQ(circles, 4u);
     EXPECT_NE(svg.find(">0</text>"), std::string::npos);
     const size_t front = svg.find("<polyline points=\"");
@@ -91,6 +97,104 @@ TEST(ReportWriter, HtmlIsWellFormedWithOneSvgPerPlotAndAParetoFront) {
     const std::string points = svg.substr(front, svg.find('"', front + 18) - front);
     EXPECT_EQ(std::count(points.begin(), points.end(), ','), 3) << points;
     EXPECT_NE(svg.find("stroke=\"#d62728\""), std::string::npos);  // the flagged point
+}
+
+// The PNG an <img> embeds, decoded; fails the test unless it is a PNG data:
+// URI shown at a whole multiple of its size.
+Image embeddedImage(const test::XmlElement& img) {
+    const std::string src = img.attribute("src"), prefix = "data:image/png;base64,";
+    EXPECT_EQ(src.rfind(prefix, 0), 0u) << src.substr(0, 40);
+    const Image image = decodeImage(test::fromBase64(src.substr(prefix.size())), "embedded.png");
+    const int width = std::stoi(img.attribute("width")),
+              height = std::stoi(img.attribute("height"));
+    EXPECT_EQ(width % image.width, 0) << width << " for " << image.width;
+    EXPECT_EQ(width / image.width * image.height, height);
+    return image;
+}
+
+// The texts of an element's <text> children (an SVG's labels), each whole.
+std::vector<std::string> svgTexts(const test::XmlElement& element) {
+    std::vector<std::string> texts;
+    for (const test::XmlElement* t : element.all("text")) texts.push_back(t->allText());
+    return texts;
+}
+
+bool contains(const std::vector<std::string>& texts, const std::string& text) {
+    return std::find(texts.begin(), texts.end(), text) != texts.end();
+}
+
+TEST(ReportWriter, Base64MatchesTheRfcVectors) {
+    EXPECT_EQ(base64(""), "");
+    EXPECT_EQ(base64("f"), "Zg==");
+    EXPECT_EQ(base64("fo"), "Zm8=");
+    EXPECT_EQ(base64("foo"), "Zm9v");
+    EXPECT_EQ(base64("foobar"), "Zm9vYmFy");
+    const std::string bytes("\x00\xff\x10\x80", 4);
+    EXPECT_EQ(test::fromBase64(base64(bytes)), bytes);
+}
+
+// Pictures embedded as PNG data URIs that decode to what was given, heat
+// maps with their colour scale, and a legend on every plot and gallery.
+TEST(ReportWriter, HtmlEmbedsPicturesWithScalesAndLegends) {
+    Report report = sampleReport();
+    report.plots[0].points[2].series = report.plots[0].points[3].series = "same series";
+    const Image picture{4, 3, 3, [] {
+                            std::vector<float> v;
+                            for (int i = 0; i < 36; ++i) v.push_back(float(i * 7 % 256) / 255);
+                            return v;
+                        }()};
+    const Image heat = heatMap(Image{2, 1, 1, {0, 1}}, HeatScale{1e-4, 1});
+    Gallery gallery;
+    gallery.title = "Pictures & more";
+    gallery.legend = {{"#ff00ff", "flip"}, {"#00ffff", "acne"}};
+    gallery.groups = {{"first",
+                       "a note",
+                       {{"image", pngBytes(picture), std::nullopt, ""},
+                        {"error", pngBytes(heat), HeatScale{1e-4, 1}, "colour error"}}},
+                      {"second", "", {{"image", pngBytes(picture), std::nullopt, ""}}}};
+    report.galleries = {gallery};
+    const std::string html = toHtml(report);
+    ASSERT_EQ(test::xmlProblem(html), "");
+    const test::XmlElement page = test::parseXml(html);
+
+    // Each plot: a legend naming each series once, the hollow red points and the front.
+    const auto svgs = page.all("svg");
+    ASSERT_EQ(svgs.size(), 2u);  // the plot and one colour scale
+    const auto legends = svgs[0]->all("g", "legend");
+    ASSERT_EQ(legends.size(), 1u);
+    const std::vector<std::string> legendTexts = svgTexts(*legends[0]);
+    EXPECT_EQ(legendTexts, (std::vector<std::string>{"legend", "slow exact", "fast <rough>",
+                                                     "same series", "flagged", "Pareto front"}));
+    EXPECT_EQ(legends[0]->all("circle").size(), 4u);  // three series and the flagged mark
+    EXPECT_EQ(legends[0]->all("line").size(), 1u);    // the front's dashes
+
+    // The gallery: its legend, its groups, each picture as it was given.
+    const auto galleries = page.all("section", "gallery");
+    ASSERT_EQ(galleries.size(), 1u);
+    EXPECT_EQ(galleries[0]->all("h2").at(0)->allText(), "Pictures & more");
+    const auto swatches = galleries[0]->all("span", "swatch");
+    ASSERT_EQ(swatches.size(), 2u);
+    EXPECT_EQ(swatches[0]->attribute("style"), "background: #ff00ff");
+    EXPECT_NE(galleries[0]->all("div", "legend").at(0)->allText().find("acne"), std::string::npos);
+    const auto groups = galleries[0]->all("div", "group");
+    ASSERT_EQ(groups.size(), 2u);
+    EXPECT_EQ(groups[0]->all("h3").at(0)->allText(), "first");
+    const auto images = page.all("img");
+    ASSERT_EQ(images.size(), 3u);
+    EXPECT_EQ(embeddedImage(*images[0]).pixels, picture.pixels);
+    EXPECT_EQ(std::stoi(images[0]->attribute("width")), 160);  // small pictures are enlarged
+    const Image heatBack = embeddedImage(*images[1]);
+    ASSERT_EQ(heatBack.width, 2);
+    EXPECT_EQ(heatBack.pixels[0], std::round(heatColour(0).r * 255) / 255);
+    // The heat map's figure holds its colour scale: a tick per decade, the label.
+    const auto figures = groups[0]->all("figure");
+    ASSERT_EQ(figures.size(), 2u);
+    EXPECT_TRUE(figures[0]->all("svg").empty());
+    const auto scale = figures[1]->all("svg", "scale");
+    ASSERT_EQ(scale.size(), 1u);
+    EXPECT_EQ(svgTexts(*scale[0]), (std::vector<std::string>{"\u22641e-4", "1e-3", "1e-2", "1e-1",
+                                                             "1", "colour error"}));
+    EXPECT_EQ(scale[0]->all("rect").size(), 61u);  // 60 steps and the frame
 }
 
 TEST(ReportSweep, KnobsCoverPrecisionSppBlockAndSize) {
@@ -161,7 +265,36 @@ TEST_F(NumericsCli, StressWritesTableCsvJsonHtml) {
     const auto csv = test::parseCsv(readFile(dir / "out/stress.csv"));
     EXPECT_EQ(csv.size(), 5u);  // header + naive, robust, fp64, double
     EXPECT_NO_THROW(test::JsonReader(readFile(dir / "out/stress.json")).document());
-    EXPECT_EQ(test::xmlProblem(readFile(dir / "out/stress.html")), "");
+    const std::string html = readFile(dir / "out/stress.html");
+    EXPECT_EQ(test::xmlProblem(html), "");
+    const test::XmlElement page = test::parseXml(html);
+    // The case's plot has a legend naming the four modes.
+    const auto legends = page.all("g", "legend");
+    ASSERT_EQ(legends.size(), 1u);
+    for (const char* mode : {"naive", "robust", "fp64", "double", "Pareto front"})
+        EXPECT_TRUE(contains(svgTexts(*legends[0]), mode)) << mode;
+    // Its pictures: the oracle's, then each GPU mode's, at the render's size.
+    const auto groups = page.all("div", "group");
+    ASSERT_EQ(groups.size(), 1u);
+    EXPECT_EQ(groups[0]->all("h3").at(0)->allText(), "tiny_sphere");
+    const auto images = groups[0]->all("img");
+    ASSERT_EQ(images.size(), 4u);
+    const auto captions = groups[0]->all("figcaption");
+    ASSERT_EQ(captions.size(), 4u);
+    EXPECT_EQ(captions[0]->allText(), "oracle (long double)");
+    for (size_t i = 0; i < images.size(); ++i) {
+        const Image image = embeddedImage(*images[i]);
+        EXPECT_EQ(image.width, 24);
+        EXPECT_EQ(image.height, 18);
+        if (i == 0) continue;
+        const char* mode = std::array{"naive", "robust", "fp64"}[i - 1];
+        EXPECT_EQ(captions[i]->allText().find(mode), 0u) << mode;
+    }
+    const auto marks = page.all("span", "swatch");
+    ASSERT_EQ(marks.size(), 3u);  // flips, wrong ids, acne
+    const std::string legendText = page.all("div", "legend").at(0)->allText();
+    for (const char* mark : {"flip", "wrong id", "acne"})
+        EXPECT_NE(legendText.find(mark), std::string::npos) << mark;
 
     EXPECT_NE(run.output.find("result: 4 of 4 rows as expected (PASS)"), std::string::npos) << run.output;
 
@@ -298,7 +431,30 @@ TEST_F(NumericsCli, ReportWritesItsFilesAndNamesBadInput) {
     EXPECT_NE(run.output.find("precision fp64 spp 4 block 2"), std::string::npos) << run.output;
     const auto csv = test::parseCsv(readFile(dir / "rep/report.csv"));
     EXPECT_EQ(csv.size(), 1u + 36u + 2u);  // header, every configuration, a reference per size
-    EXPECT_EQ(test::xmlProblem(readFile(dir / "rep/report.html")), "");
+    const std::string html = readFile(dir / "rep/report.html");
+    EXPECT_EQ(test::xmlProblem(html), "");
+    // Per size: two plots, each with a legend of the precision modes; a
+    // gallery with each configuration's image and error heat map (on its
+    // colour scale), the reference's image alone.
+    const test::XmlElement page = test::parseXml(html);
+    const auto legends = page.all("g", "legend");
+    ASSERT_EQ(legends.size(), 4u);
+    for (const auto* legend : legends)
+        for (const char* series : {"naive", "robust", "fp64", "cpu double"})
+            EXPECT_TRUE(contains(svgTexts(*legend), series)) << series;
+    const auto galleries = page.all("section", "gallery");
+    ASSERT_EQ(galleries.size(), 2u);
+    for (const auto* gallery : galleries) {
+        const auto groups = gallery->all("div", "group");
+        ASSERT_EQ(groups.size(), 19u);
+        for (const auto* group : groups) {
+            const bool reference = group->all("h3").at(0)->allText().rfind("cpu double", 0) == 0;
+            const auto images = group->all("img");
+            ASSERT_EQ(images.size(), reference ? 1u : 2u);
+            for (const auto* img : images) EXPECT_GT(embeddedImage(*img).width, 0);
+            EXPECT_EQ(group->all("svg", "scale").size(), reference ? 0u : 1u);
+        }
+    }
     test::RunResult robust = test::vkray("report " + s + " --size 24x18 --precision robust --out " + path("rob"));
     ASSERT_EQ(robust.status, 0) << robust.output;
     EXPECT_EQ(test::parseCsv(readFile(dir / "rob/report.csv")).size(), 1u + 12u + 2u);

@@ -46,7 +46,7 @@ protected:
     std::string filesFor(const Frame& frame, const std::string& name) const {
         const std::string prefix = (dir / name).string();
         writeImage(prefix + ".png", colorImage(frame));
-        writeAovs(prefix, frame);
+        writeAovs(prefix, frame, {});
         return bytesOf(name + ".png") + bytesOf(name + ".depth.pfm") +
                bytesOf(name + ".normal.pfm") + bytesOf(name + ".id.pfm");
     }

@@ -5,7 +5,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace vkray {
 namespace {
@@ -44,6 +46,33 @@ TEST(Camera, PrimarySampleIsPixelCentreOrBlockCentre) {
     // Pixel (5, 6) with block 4 lies in the block starting at (4, 4): centre (6, 6).
     EXPECT_EQ(primarySample(5, 6, 4).px, 6.0);
     EXPECT_EQ(primarySample(5, 6, 4).py, 6.0);
+}
+
+// Eye at z = 5 looking down -z, 90 degrees, 3x3 pixels: the centre pixel's
+// ray is -z; the top-left corner pixel's goes through (-2/3, 2/3) of the
+// unit image plane at distance 1 (tan 45 = 1, pixel centre 0.5 of 1.5).
+TEST(Camera, HitPointsAreTheEyePlusDepthAlongSampleZero) {
+    Camera camera;
+    camera.eye = {0, 0, 5};
+    camera.look = {0, 0, 0};
+    camera.up = {0, 1, 0};
+    camera.fovDegrees = 90;
+    const RenderSettings settings{3, 3, 1};
+    const CameraBasis basis = makeCameraBasis(camera, 3, 3);
+    Frame frame(3, 3);
+    std::fill(frame.depth.begin(), frame.depth.end(), std::numeric_limits<float>::infinity());
+    frame.depth[frame.index(1, 1)] = 2;
+    frame.depth[frame.index(0, 0)] = 3;
+    const std::vector<glm::vec3> points = hitPoints(frame, basis, settings);
+    ASSERT_EQ(points.size(), 9u);
+    EXPECT_EQ(points[frame.index(1, 1)], glm::vec3(0, 0, 3));
+    const glm::dvec3 corner = glm::normalize(glm::dvec3(-2.0 / 3, 2.0 / 3, -1));
+    const glm::vec3 expected(glm::dvec3(0, 0, 5) + 3.0 * corner);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(points[frame.index(0, 0)][c], expected[c], 1e-6) << c;
+    EXPECT_EQ(points[frame.index(2, 2)], glm::vec3(0));  // a miss
+    const glm::dvec3 d = primaryDirection(basis, settings, {0.5, 0.5});
+    EXPECT_NEAR(glm::length(d), 1, 1e-15);
+    EXPECT_NEAR(d.x, corner.x, 1e-15);
 }
 
 TEST(Camera, AutoCameraFramesTheFiniteObjects) {
