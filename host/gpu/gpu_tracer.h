@@ -16,6 +16,7 @@
 #include "scene/tile_schedule.h"
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -61,6 +62,11 @@ ShaderSource variantSource(const std::string& shaderDirectory, const ShaderFeatu
 
 struct Pipeline;
 
+// A tile just traced, its pixels still in the device's buffer
+// (gpu/traced_tile.h): what `vkray view` copies to its window on the device.
+struct TracedTile;
+using TileListener = std::function<void(const TracedTile&)>;
+
 // The render the device cannot do right: one ray needs more loop turns than
 // the driver runs in one invocation (llvmpipe's loop limit). It is refused
 // rather than drawn wrong.
@@ -95,12 +101,17 @@ public:
                           const RenderSettings& settings, int x, int y,
                           GpuRenderStats* stats = nullptr);
 
+    // From now on `listener` hears of each tile render() traces, after the
+    // device has finished it and before the next one starts ({}: none).
+    void setTileListener(TileListener listener);
+
 private:
     const Pipeline& pipelineFor(const ShaderFeatures& features, GpuRenderStats& stats);
 
     Context& context_;
     GpuRenderOptions options_;
     std::unique_ptr<Pipeline> pipeline_;  // the last variant's, reused while it stays
+    TileListener tileListener_;
 };
 
 }  // namespace vkray::gpu
