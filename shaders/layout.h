@@ -307,7 +307,7 @@ VKRAY_CONST(uint, PRESENT_ABSORB, 0u);   // a tile into the sums (and the AOVs)
 VKRAY_CONST(uint, PRESENT_COMPOSE, 1u);  // the view of the whole image
 
 VKRAY_CONST(uint, VIEW_COLOR, 0u);
-VKRAY_CONST(uint, VIEW_DEPTH, 1u);       // false colour over PresentParams.range.xy
+VKRAY_CONST(uint, VIEW_DEPTH, 1u);       // false colour, even in 1 / depth over range.xy
 VKRAY_CONST(uint, VIEW_NORMAL, 2u);      // 0.5 + 0.5 n
 VKRAY_CONST(uint, VIEW_OBJECT_ID, 3u);   // a colour per object
 VKRAY_CONST(uint, VIEW_DIFFERENCE, 4u);  // GPU - CPU heat map, over range.z in red to yellow

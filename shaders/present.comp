@@ -36,22 +36,24 @@ uint packBytes(vec3 c) {
     return b.x | (b.y << 8) | (b.z << 16) | (255u << 24);
 }
 
-// Blue (near) to red (far) through green, over [lo, hi]; a miss is black.
-vec3 depthColor(float depth, float lo, float hi) {
+// Red (near) to blue (far) through green, evenly in 1 / depth over [near,
+// far], so that a floor running to the horizon leaves the near objects
+// their colours; a miss is black.
+vec3 depthColor(float depth, float near, float far) {
     if (isinf(depth) || isnan(depth)) return vec3(0.0);
-    float t = hi > lo ? clamp((depth - lo) / (hi - lo), 0.0, 1.0) : 0.0;
+    float t = 0.0;
+    if (far > near && near > 0.0)
+        t = clamp((1.0 / max(depth, near) - 1.0 / far) / (1.0 / near - 1.0 / far), 0.0, 1.0);
     return clamp(vec3(2.0 * t - 1.0, 1.0 - abs(2.0 * t - 1.0), 1.0 - 2.0 * t), 0.0, 1.0);
 }
 
-// A colour per object, far apart for neighbouring ids; the background black.
+// A colour per object, hues far apart for neighbouring ids (golden-ratio
+// steps around the colour wheel); the background black.
 vec3 idColor(int id) {
     if (id < 0) return vec3(0.0);
-    uint h = uint(id) * 0x9e3779b9u;
-    h ^= h >> 15u;
-    h *= 0x85ebca6bu;
-    h ^= h >> 13u;
-    return vec3(0.25) + 0.75 * vec3(float(h & 255u), float((h >> 8) & 255u),
-                                    float((h >> 16) & 255u)) / 255.0;
+    float hue = fract(float(id) * 0.61803398875);
+    vec3 wheel = clamp(abs(fract(hue + vec3(0.0, 2.0 / 3.0, 1.0 / 3.0)) * 6.0 - 3.0) - 1.0, 0.0, 1.0);
+    return 0.9 * mix(vec3(1.0), wheel, 0.75);
 }
 
 // The largest channel difference of the two colours clamped to [0, 1], as

@@ -34,7 +34,7 @@ Camera orbit(const Camera& camera, double right, double down) {
     const double polar = std::acos(std::clamp(glm::dot(offset / length, up), -1.0, 1.0));
     const double turned = std::clamp(polar - glm::radians(down), glm::radians(1.0), glm::radians(179.0));
     const glm::dvec3 side = glm::cross(up, offset);
-    if (glm::length(side) > 0) offset = rotated(offset, glm::normalize(side), polar - turned);
+    if (glm::length(side) > 0) offset = rotated(offset, glm::normalize(side), turned - polar);
     Camera result = camera;
     result.eye = camera.look + offset;
     return result;

@@ -75,7 +75,8 @@ std::string shaderDirectory(const Options& o) {
     return shaders.path;
 }
 
-// Fails before rendering when an output could never be written.
+}  // namespace
+
 void requireWritableFolder(const std::string& path, const char* what) {
     fs::path folder = fs::path(path).parent_path();
     if (folder.empty()) folder = ".";
@@ -83,6 +84,8 @@ void requireWritableFolder(const std::string& path, const char* what) {
         throw Error(std::string(what) + " '" + path + "': the folder '" + folder.string() +
                     "' does not exist or is not writable");
 }
+
+namespace {
 
 }  // namespace
 

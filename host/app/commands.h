@@ -29,6 +29,8 @@ Camera chooseCamera(const Scene& scene, const Options& options);
 gpu::GpuRenderOptions gpuRenderOptions(const Options& options);
 // The files a render reads besides the shaders: the scene and what it names.
 std::vector<std::string> sceneInputs(const Options& options);
+// Fails before rendering when an output could never be written (`what`: the flag).
+void requireWritableFolder(const std::string& path, const char* what);
 // An Error as vkray prints it: "file:line:col: error: ..." or "vkray: error: ...".
 void printError(const Error& error, std::ostream& err);
 

@@ -25,6 +25,7 @@
 #include <mutex>
 #include <optional>
 #include <ostream>
+#include <set>
 #include <thread>
 
 namespace vkray {
@@ -112,20 +113,45 @@ private:
     std::string error_;
 };
 
+// The tiles of one pass less those already in the picture: a pass cut
+// short by a reload that failed goes on where it stopped, rather than
+// adding a sample twice to the tiles it had done.
+class RemainingTiles final : public TileSchedule {
+public:
+    void clear() { done_.clear(); }
+    void absorbed(const TileRect& tile) { done_.insert({tile.x, tile.y}); }
+    void plan(int width, int height, int tileSide) override {
+        tiles_ = tilesOf(width, height, tileSide);
+        next_ = 0;
+    }
+    std::optional<TileRect> next() override {
+        while (next_ < tiles_.size() && done_.count({tiles_[next_].x, tiles_[next_].y})) ++next_;
+        if (next_ == tiles_.size()) return std::nullopt;
+        return tiles_[next_++];
+    }
+    void finished(const TileRect&, const Frame&) override {}
+
+private:
+    std::set<std::pair<int, int>> done_;  // their corners
+    std::vector<TileRect> tiles_;
+    std::size_t next_ = 0;
+};
+
 class ViewSession {
 public:
-    ViewSession(const Options& o, std::ostream& out, std::ostream& err)
+    ViewSession(const Options& o, const std::vector<ViewEvent>& script, std::ostream& out,
+                std::ostream& err)
         : o_(o), out_(out), err_(err), shaders_(shaderDirectoryFor(o)),
           window_(o.width, o.height, "vkray view " + o.scenePath),
           context_(gpu::ContextOptions{o.device, o.validation, 0, window_.surfaceExtensions(), true}),
           tracer_(context_, gpuRenderOptions(o)),
           presenter_(context_, shaders_, window_.surfaceMaker(), o.width, o.height),
           passes_(viewProgression(o.width, o.height, o.spp, o.seed)) {
-        tracer_.setTileListener([this](const gpu::TracedTile& tile) { presenter_.absorb(tile); });
-        if (!o.eventsPath.empty()) {
-            const std::vector<ViewEvent> events = readViewEvents(o.eventsPath);
-            script_.assign(events.begin(), events.end());
-        }
+        tracer_.setTileListener([this](const gpu::TracedTile& tile) {
+            presenter_.absorb(tile);
+            remaining_.absorbed(tile.rect);
+        });
+        script_.assign(script.begin(), script.end());
         settings_.threshold = float(o.failThreshold.value_or(kCheckFailThreshold));
         out_ << "device: " << context_.device().name << " (" << context_.device().type << ", "
              << context_.device().driverName << " " << context_.device().driverInfo << ")\n";
@@ -136,7 +162,7 @@ public:
         armWatcher();
         while (!quit_ && !stopRequested()) {
             handle(window_.events());
-            if (watcher_ && watcher_->changed()) reload();
+            if (reloadDue_ || (watcher_ && watcher_->changed())) reload();
             collectCpuReference();
             runScript();
             if (quit_ || screenshotDue()) break;
@@ -150,7 +176,7 @@ public:
         if (o_.validation && context_.validationMessages() > 0)
             setError("--validation: " + std::to_string(context_.validationMessages()) +
                      " validation message(s), printed above");
-        if (!error_.empty()) {
+        if (!errorStanding().empty()) {
             err_ << "vkray: view: ended with an error standing (above)\n";
             return 1;
         }
@@ -167,16 +193,19 @@ private:
             if (first || !sameCamera(camera, sceneCamera_)) camera_ = camera;
             sceneCamera_ = camera;
             scene_ = std::move(scene);
-            error_.clear();
+            sceneError_.clear();
             restart();
             if (!first) out_ << "reloaded " << o_.scenePath << std::endl;
         } catch (const Error& e) {
-            setError(e.what());
+            report(e.what());
+            sceneError_ = e.what();
             if (!first) err_ << "vkray: kept the last good image; fix the error and save to retry\n";
         }
+        updateTitle();
     }
 
     void reload() {
+        reloadDue_ = false;
         load(false);
         ++reloads_;
         armWatcher();
@@ -189,15 +218,21 @@ private:
         out_ << "watching " << o_.scenePath << " and " << shaders_ << std::endl;
     }
 
-    void setError(const std::string& message) {
+    void report(const std::string& message) {
         printError(Error(message), err_);
         err_.flush();
-        error_ = message;
+    }
+    // The render's error (a shader that does not compile, a device failure).
+    void setError(const std::string& message) {
+        report(message);
+        renderError_ = message;
         updateTitle();
     }
+    std::string errorStanding() const { return sceneError_.empty() ? renderError_ : sceneError_; }
 
     // ---- the progression -----------------------------------------------------
     void restart() {
+        remaining_.clear();
         nextPass_ = 0;
         passesSinceRestart_ = 0;
         failed_ = false;
@@ -220,12 +255,14 @@ private:
             const CameraBasis basis = makeCameraBasis(camera_, o_.width, o_.height);
             gpu::GpuRenderStats stats;
             tracer_.render(*scene_, basis, pass.settings, &stats,
-                           [this](std::size_t done, std::size_t total) { return betweenTiles(done, total); });
+                           [this](std::size_t done, std::size_t total) { return betweenTiles(done, total); },
+                           &remaining_);
+            remaining_.clear();
             ++nextPass_;
             ++passesSinceRestart_;
             ++passesDone_;
             mrays_ = stats.renderSeconds > 0 ? double(stats.rays) / stats.renderSeconds / 1e6 : 0;
-            error_.clear();
+            renderError_.clear();
             show();
             out_ << "pass " << nextPass_ << "/" << passes_.size() << ": " << pass.name << ", "
                  << fixed(stats.renderSeconds, 3) << " s, " << fixed(mrays_, 2) << " Mrays/s"
@@ -260,10 +297,6 @@ private:
     // ---- input -------------------------------------------------------------
     void handle(const std::vector<ViewEvent>& events) {
         for (const ViewEvent& e : events) apply(e);
-        if (reloadDue_ && !rendering()) {
-            reloadDue_ = false;
-            reload();
-        }
     }
 
     void apply(const ViewEvent& e) {
@@ -441,7 +474,7 @@ private:
                 title += " | difference: " + std::to_string(*difference_) + " pixels over " +
                          fixed(s.threshold, 3);
         }
-        if (!error_.empty()) title += " | ERROR " + firstLine(error_);
+        if (!errorStanding().empty()) title += " | ERROR " + firstLine(errorStanding());
         window_.setTitle(title);
     }
 
@@ -474,10 +507,11 @@ private:
     gpu::Presenter presenter_;
     std::unique_ptr<FileWatcher> watcher_;
     std::vector<ViewPass> passes_;
+    RemainingTiles remaining_;  // of the pass in flight
 
     std::optional<Scene> scene_;
     Camera sceneCamera_, camera_;
-    std::string error_;  // the error standing, shown in the title
+    std::string sceneError_, renderError_;  // the errors standing, shown in the title
 
     std::size_t nextPass_ = 0, passesSinceRestart_ = 0, passesDone_ = 0;
     bool failed_ = false;       // the progression stopped on an error until the next change
@@ -520,8 +554,12 @@ std::vector<ViewPass> viewProgression(int width, int height, int spp, std::uint3
 }
 
 int runView(const Options& options, std::ostream& out, std::ostream& err) {
+    // The script is read first: its mistakes are told before a window opens.
+    const std::vector<ViewEvent> script =
+        options.eventsPath.empty() ? std::vector<ViewEvent>{} : readViewEvents(options.eventsPath);
+    if (!options.screenshotPath.empty()) requireWritableFolder(options.screenshotPath, "--screenshot");
     const StopOnSignal closeOnCtrlC;
-    ViewSession session(options, out, err);
+    ViewSession session(options, script, out, err);
     return session.run();
 }
 

@@ -4,7 +4,6 @@
 #include "gpu/device_limits.h"
 #include "gpu/gpu_scene.h"
 #include "gpu/shader_variant.h"
-#include "gpu/traced_tile.h"
 #include "scene/error.h"
 #include "shaders/layout.h"
 
@@ -292,7 +291,13 @@ public:
     const GpuPixel* pixels() const {
         return static_cast<const GpuPixel*>(buffer(BINDING_PIXELS).data());
     }
-    vk::Buffer pixelBuffer() const { return buffer(BINDING_PIXELS).buffer(); }
+    std::uint64_t pixelBuffer() const {
+        const VkBuffer handle = buffer(BINDING_PIXELS).buffer();
+        std::uint64_t bits = 0;
+        static_assert(sizeof bits == sizeof handle);
+        std::memcpy(&bits, &handle, sizeof bits);
+        return bits;
+    }
     const GpuDebugHeader& debugHeader() const {
         return *static_cast<const GpuDebugHeader*>(buffer(BINDING_DEBUG).data());
     }

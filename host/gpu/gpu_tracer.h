@@ -16,6 +16,7 @@
 #include "scene/tile_schedule.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -62,9 +63,12 @@ ShaderSource variantSource(const std::string& shaderDirectory, const ShaderFeatu
 
 struct Pipeline;
 
-// A tile just traced, its pixels still in the device's buffer
-// (gpu/traced_tile.h): what `vkray view` copies to its window on the device.
-struct TracedTile;
+// A tile just traced, its pixels still in the device's buffer: what `vkray
+// view` copies to its window on the device (gpu/presenter.h).
+struct TracedTile {
+    TileRect rect;                  // pixels of the image
+    std::uint64_t pixelBuffer = 0;  // its VkBuffer: GpuPixel[rect.width * rect.height], row-major
+};
 using TileListener = std::function<void(const TracedTile&)>;
 
 // The render the device cannot do right: one ray needs more loop turns than

@@ -2,7 +2,6 @@
 
 #include "gpu/context_impl.h"
 #include "gpu/spirv_cache.h"
-#include "gpu/traced_tile.h"
 #include "scene/error.h"
 #include "shaders/layout.h"
 
@@ -259,7 +258,10 @@ void Presenter::beginPass(bool fresh, bool sampleZero) {
 
 void Presenter::absorb(const TracedTile& tile) try {
     Impl& s = *impl_;
-    s.bindTile(tile.pixels);
+    VkBuffer pixels;
+    static_assert(sizeof pixels == sizeof tile.pixelBuffer);
+    std::memcpy(&pixels, &tile.pixelBuffer, sizeof pixels);
+    s.bindTile(pixels);
     s.begin();
     const TileRect& r = tile.rect;
     s.recordDispatch({{uint(r.x), uint(r.y), uint(r.width), uint(r.height)},
