@@ -10,6 +10,7 @@
 
 #include <X11/Xlib.h>
 #include <X11/Xutil.h>
+#include <X11/keysym.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -241,6 +242,69 @@ TEST_F(View, TheWindowShowsThePicture) {
     for (const char* part : {"vkray view s.sdl", "pass 8/8 block 1, sample 4 of 4", "Mrays/s", "llvmpipe"})
         EXPECT_NE(seen.title.find(part), std::string::npos) << part << " in " << seen.title;
     EXPECT_EQ(shown->stop(SIGINT), 0) << shown->output();
+}
+
+// The view's window on `x`, or 0.
+Window viewWindow(Display* x) {
+    Window root = DefaultRootWindow(x), rootBack, parent, *children = nullptr, found = 0;
+    unsigned count = 0;
+    XQueryTree(x, root, &rootBack, &parent, &children, &count);
+    for (unsigned i = 0; i < count && !found; ++i) {
+        char* name = nullptr;
+        if (XFetchName(x, children[i], &name) && name) {
+            if (std::string(name).rfind("vkray view", 0) == 0) found = children[i];
+            XFree(name);
+        }
+    }
+    if (children) XFree(children);
+    return found;
+}
+
+TEST_F(View, TheWindowsOwnMouseAndKeysMoveAndQuit) {
+    // Input sent to the window as the X server would deliver a user's: a
+    // drag with the left button, then `p` and `q`, handled in that order.
+    const std::string s = scene("s.sdl", kScene);
+    auto shown = viewInBackground(s + " --size 64x48 --spp 64");
+    ASSERT_TRUE(shown->waitFor("pass 1/68")) << shown->output();
+    Display* x = XOpenDisplay(virtualDisplay().display().c_str());
+    ASSERT_NE(x, nullptr);
+    const Window window = viewWindow(x);
+    ASSERT_NE(window, 0u);
+    const auto send = [&](int type, long mask, auto fill) {
+        XEvent e{};
+        e.type = type;
+        e.xany.window = window;
+        e.xany.display = x;
+        fill(e);
+        XSendEvent(x, window, True, mask, &e);
+    };
+    const auto mouse = [&](XEvent& e, int px, int py) {
+        e.xbutton.root = DefaultRootWindow(x);
+        e.xbutton.x = px;
+        e.xbutton.y = py;
+        e.xbutton.same_screen = True;
+    };
+    send(ButtonPress, ButtonPressMask, [&](XEvent& e) { mouse(e, 10, 20); e.xbutton.button = Button1; });
+    send(MotionNotify, PointerMotionMask, [&](XEvent& e) { mouse(e, 40, 25); e.xmotion.state = Button1Mask; });
+    send(ButtonRelease, ButtonReleaseMask, [&](XEvent& e) {
+        mouse(e, 40, 25);
+        e.xbutton.button = Button1;
+        e.xbutton.state = Button1Mask;
+    });
+    for (const KeySym key : {XK_p, XK_q})
+        send(KeyPress, KeyPressMask, [&](XEvent& e) {
+            e.xkey.root = DefaultRootWindow(x);
+            e.xkey.keycode = XKeysymToKeycode(x, key);
+            e.xkey.same_screen = True;
+        });
+    XFlush(x);
+    XCloseDisplay(x);
+    ASSERT_TRUE(shown->waitFor("camera eye")) << shown->output();
+    for (int i = 0; i < 600 && !shown->exited(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    ASSERT_TRUE(shown->exited()) << "q did not close the view\n" << shown->output();
+    EXPECT_EQ(shown->stop(), 0) << shown->output();
+    // The drag moved the eye from the scene's (0, 1.5, 6).
+    EXPECT_EQ(shown->output().find("camera eye 0 1.5 6 "), std::string::npos) << shown->output();
 }
 
 TEST_F(View, CpuReferenceViewIsRenderCpu) {
