@@ -374,7 +374,11 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     }
     stats.shader = loadOrCompile(source);
     stats.variant = describe(features);
-    if (pipeline_ && pipeline_->key == stats.shader.key) return *pipeline_;
+    for (auto kept = pipelines_.begin(); kept != pipelines_.end(); ++kept) {
+        if ((*kept)->key != stats.shader.key) continue;
+        std::rotate(kept, kept + 1, pipelines_.end());  // the last used goes last
+        return *pipelines_.back();
+    }
 
     Context::Impl& c = context_.impl();
     auto p = std::make_unique<Pipeline>();
@@ -396,8 +400,9 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
         c.device, nullptr,
         vk::ComputePipelineCreateInfo(
             {}, {{}, vk::ShaderStageFlagBits::eCompute, *p->module, "main"}, *p->layout));
-    pipeline_ = std::move(p);
-    return *pipeline_;
+    if (pipelines_.size() == kPipelinesKept) pipelines_.erase(pipelines_.begin());
+    pipelines_.push_back(std::move(p));
+    return *pipelines_.back();
 }
 
 Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera,

@@ -114,7 +114,10 @@ private:
 
     Context& context_;
     GpuRenderOptions options_;
-    std::unique_ptr<Pipeline> pipeline_;  // the last variant's, reused while it stays
+    // The last two variants' pipelines, reused while they stay: `vkray view`
+    // goes back and forth between its block passes' and its samples'.
+    static constexpr std::size_t kPipelinesKept = 2;
+    std::vector<std::unique_ptr<Pipeline>> pipelines_;  // the last used last
     TileListener tileListener_;
 };
 
