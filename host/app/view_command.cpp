@@ -119,6 +119,7 @@ private:
 class RemainingTiles final : public TileSchedule {
 public:
     void clear() { done_.clear(); }
+    bool none() const { return done_.empty(); }  // the pass has not started
     void absorbed(const TileRect& tile) { done_.insert({tile.x, tile.y}); }
     void plan(int width, int height, int tileSide) override {
         tiles_ = tilesOf(width, height, tileSide);
@@ -247,7 +248,7 @@ private:
 
     void runPass() {
         const ViewPass& pass = passes_[nextPass_];
-        presenter_.beginPass(pass.fresh, pass.settings.firstSample == 0);
+        if (remaining_.none()) presenter_.beginPass(pass.fresh, pass.settings.firstSample == 0);
         interrupted_ = false;
         tileDone_ = 0;
         tileTotal_ = 1;

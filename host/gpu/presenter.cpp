@@ -136,6 +136,7 @@ struct Presenter::Impl {
                                              caps.maxImageExtent.width),
                                   std::clamp(std::uint32_t(height), caps.minImageExtent.height,
                                              caps.maxImageExtent.height));
+        c.queue.waitIdle();  // nothing presented still uses the old images
         swapchain = nullptr;
         images.clear();
         presentReady.clear();
