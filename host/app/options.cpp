@@ -245,7 +245,7 @@ stress and report options:
                         else ../share/vkray/stress)
 
 view options (besides the camera, --size (default 960x540), --spp (default 16),
---seed, --device, --precision, --variant, -D, --shader-dir, --lenient, --threads):
+--seed, --device, --precision, --variant, -D, --shader-dir, --lenient, --threads, --validation):
   --fail T              the difference view's threshold (default 0.02, as --check's)
   --events FILE         replay input: `key p`, `drag left 100 0`, `wheel 3`, `wait-pass`,
                         `wait-cpu`, `wait-reload`, one a line
