@@ -284,7 +284,10 @@ private:
     bool betweenTiles(std::size_t done, std::size_t total) {
         tileDone_ = done;
         tileTotal_ = std::max<std::size_t>(total, 1);
-        if (done > 0) show();
+        // The window follows the tiles at 10 frames a second at most: a
+        // composition of the whole view costs more than a small tile.
+        if (done > 0 && Clock::now() - lastShown_ >= std::chrono::milliseconds(100)) show();
+        else updateTitle();
         handle(window_.events());
         if (watcher_ && watcher_->changed()) reloadDue_ = true;
         if (stopRequested()) quit_ = true;
@@ -447,6 +450,7 @@ private:
     void show() {
         shown_ = viewNow();
         presenter_.show(shown_);
+        lastShown_ = Clock::now();
         updateTitle();
     }
 
@@ -521,6 +525,7 @@ private:
     bool quit_ = false;
     std::size_t tileDone_ = 0, tileTotal_ = 1;
     double mrays_ = 0;
+    Clock::time_point lastShown_;
 
     gpu::ViewSettings settings_, shown_;
     bool showCpu_ = false, showDifference_ = false;
