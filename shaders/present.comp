@@ -67,17 +67,19 @@ vec3 heat(vec3 a, vec3 b, float threshold) {
 }
 
 void absorb(uvec2 at) {
-    uint width = params.rect.z;
-    GpuPixel p = tile[at.y * width + at.x];
+    // Member by member: SPIR-V has no store of one block's struct into another's.
+    uint t = at.y * params.rect.z + at.x;
+    vec4 color = tile[t].color;
     uvec2 pixel = params.rect.xy + at;
     uint i = pixel.y * params.mode.w + pixel.x;
     if (params.mode.y != 0u)
-        sums[i] = vec4(p.color.rgb, 1.0);
+        sums[i] = vec4(color.rgb, 1.0);
     else
-        sums[i] = vec4(sums[i].rgb + p.color.rgb, sums[i].w + 1.0);
+        sums[i] = vec4(sums[i].rgb + color.rgb, sums[i].w + 1.0);
     if (params.mode.z != 0u) {
-        aovs[i] = p;
-        float depth = p.color.w;
+        aovs[i].color = color;
+        aovs[i].normal = tile[t].normal;
+        float depth = color.w;
         if (!isinf(depth) && !isnan(depth)) {
             atomicMin(depthRange.x, floatBitsToUint(max(depth, 0.0)));
             atomicMax(depthRange.y, floatBitsToUint(max(depth, 0.0)));
@@ -88,13 +90,14 @@ void absorb(uvec2 at) {
 void compose(uvec2 pixel) {
     uint i = pixel.y * params.rect.z + pixel.x;
     bool fromCpu = params.mode.z != 0u;
-    GpuPixel p = fromCpu ? cpu[i] : aovs[i];
-    vec3 color = fromCpu ? p.color.rgb : sums[i].rgb / sums[i].w;
+    vec4 sample0 = fromCpu ? cpu[i].color : aovs[i].color;  // w: depth
+    vec4 normal = fromCpu ? cpu[i].normal : aovs[i].normal;  // w: object id
+    vec3 color = fromCpu ? sample0.rgb : sums[i].rgb / sums[i].w;
     vec3 shown;
     switch (params.mode.y) {
-    case VIEW_DEPTH: shown = depthColor(p.color.w, params.range.x, params.range.y); break;
-    case VIEW_NORMAL: shown = floatBitsToInt(p.normal.w) < 0 ? vec3(0.0) : 0.5 + 0.5 * p.normal.xyz; break;
-    case VIEW_OBJECT_ID: shown = idColor(floatBitsToInt(p.normal.w)); break;
+    case VIEW_DEPTH: shown = depthColor(sample0.w, params.range.x, params.range.y); break;
+    case VIEW_NORMAL: shown = floatBitsToInt(normal.w) < 0 ? vec3(0.0) : 0.5 + 0.5 * normal.xyz; break;
+    case VIEW_OBJECT_ID: shown = idColor(floatBitsToInt(normal.w)); break;
     case VIEW_DIFFERENCE: shown = heat(sums[i].rgb / sums[i].w, cpu[i].color.rgb, params.range.z); break;
     default: shown = color; break;
     }

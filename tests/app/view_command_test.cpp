@@ -75,8 +75,11 @@ protected:
 
 TEST_F(View, FullProgressionIsTheRenderByteForByte) {
     const std::string s = scene("s.sdl", kScene);
-    RunResult shown = view(s + kSize + " --frames 8 --screenshot " + path("view.png"));
+    // With the validation layer: a Vulkan message of the window's swapchain,
+    // copies or presents would fail the run.
+    RunResult shown = view(s + kSize + " --validation --frames 8 --screenshot " + path("view.png"));
     ASSERT_EQ(shown.status, 0) << shown.output;
+    EXPECT_EQ(shown.output.find("validation:"), std::string::npos) << shown.output;
     EXPECT_NE(shown.output.find("pass 8/8: block 1, sample 4 of 4"), std::string::npos) << shown.output;
     EXPECT_NE(shown.output.find("wrote " + path("view.png")), std::string::npos) << shown.output;
     ASSERT_EQ(render(s + kSize + " -o " + path("render.png")).status, 0);
@@ -325,7 +328,7 @@ TEST_F(View, DifferenceCountsThePixelsCheckCounts) {
     // A threshold low enough that float against double shows: the count is
     // `render --check`'s, for the same threshold.
     const std::string s = scene("s.sdl", kScene);
-    RunResult shown = view(s + kSize + " --fail 1e-7 --frames 8 --screenshot " + path("diff.png") +
+    RunResult shown = view(s + kSize + " --validation --fail 1e-7 --frames 8 --screenshot " + path("diff.png") +
                            " --events " + events("key d\nwait-cpu\n"));
     ASSERT_EQ(shown.status, 0) << shown.output;
     std::smatch viewCount, checkCount;
