@@ -234,9 +234,11 @@ struct GpuDoubleRayTask {
 // end of each invocation tells whether the driver cut any loop short
 // (docs/lavapipe.md, "The loop limit").
 struct TileParams {
-    uvec4 tile;  // x, y = origin; z, w = width, height
-    uvec4 work;  // x = turn budget of this dispatch, y = 1 on the tile's first dispatch,
-                 // z = canary turns, w = rays per tile row
+    uvec4 tile;     // x, y = origin; z, w = width, height
+    uvec4 work;     // x = turn budget of this dispatch, y = 1 on the tile's first dispatch,
+                    // z = canary turns, w = rays per tile row
+    uvec4 samples;  // the samples each ray traces, of its grid of frame.sampling.x:
+                    // x = the first, y = one past the last (a render: 0 and all of them)
 };
 
 // One ray's (one invocation's) state between the dispatches of its tile.
@@ -285,6 +287,38 @@ struct GpuDebugEntry {
                   // light: the diffuse term rgb, w = m.s
     vec4 second;  // object: generic ray direction
                   // light: the specular term rgb, w = m.h
+};
+
+// `vkray view` (present.comp): the tracer's tiles summed into the picture
+// and shown in the window, all on the device. Descriptor bindings (set 0):
+VKRAY_CONST(uint, PRESENT_BINDING_TILE, 0u);   // readonly GpuPixel[]: the tile just traced
+VKRAY_CONST(uint, PRESENT_BINDING_SUMS, 1u);   // vec4[] a pixel: rgb = its samples summed in order,
+                                               // w = how many
+VKRAY_CONST(uint, PRESENT_BINDING_AOVS, 2u);   // GpuPixel[] a pixel: the last pass with sample 0
+VKRAY_CONST(uint, PRESENT_BINDING_CPU, 3u);    // readonly GpuPixel[] a pixel: the CPU reference
+VKRAY_CONST(uint, PRESENT_BINDING_VIEW, 4u);   // uint[] a pixel: the view as 8-bit RGBA (or BGRA)
+VKRAY_CONST(uint, PRESENT_BINDING_BYTES, 5u);  // readonly float[256]: [b] = the least value
+                                               // a PNG stores as byte b or more (pngByte)
+VKRAY_CONST(uint, PRESENT_BINDING_RANGE, 6u);  // uvec4: x, y = float bits of the least and the
+                                               // greatest finite depth of the pass (atomics)
+VKRAY_CONST(uint, PRESENT_WORKGROUP, 8u);      // present.comp's local size, square
+
+VKRAY_CONST(uint, PRESENT_ABSORB, 0u);   // a tile into the sums (and the AOVs)
+VKRAY_CONST(uint, PRESENT_COMPOSE, 1u);  // the view of the whole image
+
+VKRAY_CONST(uint, VIEW_COLOR, 0u);
+VKRAY_CONST(uint, VIEW_DEPTH, 1u);       // false colour, even in 1 / depth over range.xy
+VKRAY_CONST(uint, VIEW_NORMAL, 2u);      // 0.5 + 0.5 n
+VKRAY_CONST(uint, VIEW_OBJECT_ID, 3u);   // a colour per object
+VKRAY_CONST(uint, VIEW_DIFFERENCE, 4u);  // GPU - CPU heat map, over range.z in red to yellow
+
+struct PresentParams {
+    uvec4 rect;   // absorb: the tile's x, y, width, height; compose: 0, 0 and the image's size
+    uvec4 mode;   // x = PRESENT_ABSORB or PRESENT_COMPOSE;
+                  // absorb: y = 1 when the tile starts its pixels' sums afresh (else adds to
+                  // them), z = 1 when it traced sample 0 (it has AOVs), w = the image's width;
+                  // compose: y = VIEW_*, z = 1 to show the CPU reference, w = 1 for BGRA
+    vec4 range;   // compose: x, y = the depth range shown; z = the difference's threshold
 };
 
 #ifdef __cplusplus

@@ -407,28 +407,28 @@ void main() {
     rayPixelIndex = rayPixel.y * frame.image.x + rayPixel.x;
     sampleGridColumns = sampleColumns(samples);
     sampleGridRows = sampleRows(samples);
-#else
-    const uint samples = 1u;
 #endif
 #if VKRAY_RAY_STACK
     rayStackBase = rayIndex * frame.sampling.w;
 #endif
 
-    // Its samples go on from where the last dispatch left them. The colour
-    // is their mean; the AOVs are those of sample 0.
+    // Its samples (those of tileParams.samples: all of them, but for
+    // `vkray view`'s one a pass) go on from where the last dispatch left
+    // them. The colour is their mean; the AOVs are those of sample 0.
+    uint firstSample = tileParams.samples.x, endSample = tileParams.samples.y;
     GpuRayProgress ray;
-    if (tileParams.work.y != 0u)
-        ray = GpuRayProgress(vec4(0.0), vec4(0.0));  // no sample finished, none pending
+    if (tileParams.work.y != 0u)  // none of its samples finished, none pending
+        ray = GpuRayProgress(vec4(0.0, 0.0, 0.0, uintBitsToFloat(firstSample)), vec4(0.0));
     else
         ray = progress[rayIndex];
-    if (floatBitsToUint(ray.sum.w) < samples) {
-        traceSamples(ray, samples, firstPixel, tileParams.work.x);
+    if (floatBitsToUint(ray.sum.w) < endSample) {
+        traceSamples(ray, endSample, firstPixel, tileParams.work.x);
         progress[rayIndex] = ray;
-        if (floatBitsToUint(ray.sum.w) < samples) {
+        if (floatBitsToUint(ray.sum.w) < endSample) {
             atomicAdd(status.counts.x, 1u);
         } else {
             GpuPixel result = pixels[firstPixel];
-            result.color.rgb = ray.sum.rgb / float(samples);
+            result.color.rgb = ray.sum.rgb / float(endSample - firstSample);
             // Fill the block (clipped to the tile).
             uvec2 last = min(first + uvec2(block), tileSize);
             for (uint y = first.y; y < last.y; ++y)

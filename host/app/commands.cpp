@@ -6,6 +6,7 @@
 #include "app/pixel_report.h"
 #include "app/progress.h"
 #include "app/stress_command.h"
+#include "app/view_command.h"
 #include "app/watch.h"
 #include "dist/distributed_render.h"
 #include "dist/mpi_world.h"
@@ -39,12 +40,15 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Located errors read "file:line:col: error: ..." already; others get a prefix.
+}  // namespace
+
 void printError(const Error& e, std::ostream& err) {
     const std::string message = e.what();
     err << (message.find(": error: ") != std::string::npos ? "" : "vkray: error: ") << message
         << "\n";
 }
+
+namespace {
 
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
@@ -71,7 +75,8 @@ std::string shaderDirectory(const Options& o) {
     return shaders.path;
 }
 
-// Fails before rendering when an output could never be written.
+}  // namespace
+
 void requireWritableFolder(const std::string& path, const char* what) {
     fs::path folder = fs::path(path).parent_path();
     if (folder.empty()) folder = ".";
@@ -79,6 +84,10 @@ void requireWritableFolder(const std::string& path, const char* what) {
         throw Error(std::string(what) + " '" + path + "': the folder '" + folder.string() +
                     "' does not exist or is not writable");
 }
+
+namespace {
+
+}  // namespace
 
 Camera chooseCamera(const Scene& scene, const Options& o) {
     Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
@@ -90,6 +99,13 @@ Camera chooseCamera(const Scene& scene, const Options& o) {
     if (o.eye || o.look || o.up) camera.loc = FileLoc{};
     return camera;
 }
+
+gpu::GpuRenderOptions gpuRenderOptions(const Options& o) {
+    return {.shaderDirectory = shaderDirectory(o), .allFeatures = o.allFeatures,
+            .userDefines = o.defines, .precision = o.precision};
+}
+
+namespace {
 
 double mrays(std::size_t rays, double seconds) {
     return seconds > 0 ? double(rays) / seconds / 1e6 : 0;
@@ -114,8 +130,7 @@ struct GpuSession {
             const gpu::DeviceInfo& device = context->device();
             out << "device: " << device.name << " (" << device.type << ", " << device.driverName
                 << " " << device.driverInfo << ")\n";
-            tracer = std::make_unique<gpu::GpuTracer>(
-                *context, gpu::GpuRenderOptions{.shaderDirectory = shaderDirectory(o), .allFeatures = o.allFeatures, .userDefines = o.defines, .precision = o.precision});
+            tracer = std::make_unique<gpu::GpuTracer>(*context, gpuRenderOptions(o));
         }
         return *tracer;
     }
@@ -226,13 +241,16 @@ bool compareAndReport(const Image& a, const Image& b, const Image* idsA, const I
     return result.passed;
 }
 
-// Loads the scene as the options say; warnings go to err.
+}  // namespace
+
 Scene loadSceneFor(const Options& o, std::ostream& err) {
     std::vector<std::string> warnings;
     Scene scene = loadScene(o.scenePath, {o.lenient}, &warnings);
     for (const std::string& w : warnings) err << w << "\n";
     return scene;
 }
+
+namespace {
 
 int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::ostream& err) {
     const Scene scene = loadSceneFor(o, err);
@@ -288,7 +306,8 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
     return passed ? 0 : 2;
 }
 
-// The files a render reads besides the shaders: the scene and what it names.
+}  // namespace
+
 std::vector<std::string> sceneInputs(const Options& o) {
     std::vector<std::string> files{o.scenePath};
     try {
@@ -301,6 +320,8 @@ std::vector<std::string> sceneInputs(const Options& o) {
     }
     return files;
 }
+
+namespace {
 
 // --watch: render, then re-render whenever an input or a shader changes, until
 // Ctrl-C. A failed render prints its error and keeps the last good image.
@@ -475,6 +496,7 @@ int runOnRank(const Options& o, std::ostream& out, std::ostream& err) {
     case Command::Difftest: return runDifftest(o, out, err);
     case Command::Report: return runReport(o, out, err);
     case Command::Features: return runFeatures(o, out, err);
+    case Command::View: return runView(o, out, err);
     }
     return 1;
 }

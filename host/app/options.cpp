@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <map>
 
@@ -109,6 +110,9 @@ const std::map<std::string, Flag>& renderFlags() {
              o.precisionGiven = true;
          }}},
         {"--out", {true, [](Options& o, const std::string& v) { o.outDirectory = v; }}},
+        {"--frames", {true, [](Options& o, const std::string& v) { o.frames = parseInt("--frames", v, 1, 1000000); }}},
+        {"--screenshot", {true, [](Options& o, const std::string& v) { o.screenshotPath = v; }}},
+        {"--events", {true, [](Options& o, const std::string& v) { o.eventsPath = v; }}},
         {"--scenes", {true, [](Options& o, const std::string& v) { o.difftestScenes = parseInt("--scenes", v, 1, 100000000); }}},
         {"--cases", {true, [](Options& o, const std::string& v) { o.casesPattern = v; }}},
         {"--cases-dir", {true, [](Options& o, const std::string& v) { o.casesDirectory = v; }}},
@@ -144,9 +148,17 @@ void parseDefine(const std::string& text, Options& o) {
 // Which flags each command takes, besides render's full set.
 bool accepts(Command command, const std::string& flag) {
     const bool numericsOnly = flag == "--out" || flag == "--cases" || flag == "--cases-dir";
+    const bool viewOnly = flag == "--frames" || flag == "--screenshot" || flag == "--events";
     switch (command) {
-    case Command::Render: return flag != "--all" && !numericsOnly;
+    case Command::Render: return flag != "--all" && !numericsOnly && !viewOnly;
+    case Command::View:
+        return viewOnly || flag == "--size" || flag == "--device" || flag == "--spp" ||
+               flag == "--seed" || flag == "--lenient" || flag == "--validation" ||
+               flag == "--variant" || flag == "--threads" || flag == "--shader-dir" ||
+               flag == "--eye" || flag == "--look" || flag == "--up" || flag == "--fov" ||
+               flag == "-D" || flag == "--precision" || flag == "--fail";
     case Command::Pixel:
+        if (viewOnly) return false;
         return flag != "-o" && flag != "--output" && flag != "--aov" && flag != "--cpu" &&
                flag != "--check" && flag != "--diff" && flag != "--fail" &&
                flag != "--failpercent" && flag != "--watch" && flag != "--threads" &&
@@ -191,6 +203,8 @@ std::string usageText() {
                                                   the scene's features, shader variant and buffers
   vkray difftest [--scenes N] [--seed S] [--precision MODE] [--out DIR]
                                                   random scenes on GPU and CPU, compared
+  vkray view SCENE.sdl [options]                  a window that renders progressively and
+                                                  reloads on change (docs/usage.md, "view")
   vkray devices                                   list Vulkan devices
   vkray shaders check [--all] [--precision MODE] [--shader-dir DIR]
                                                   compile the shader variants
@@ -234,6 +248,17 @@ stress and report options:
   --cases-dir DIR       stress: the cases' folder (default scenes/stress next to the binary,
                         else ../share/vkray/stress)
 
+view options (besides the camera, --size (default 960x540), --spp (default 16),
+--seed, --device, --precision, --variant, -D, --shader-dir, --lenient, --threads, --validation):
+  --fail T              the difference view's threshold (default 0.02, as --check's)
+  --events FILE         replay input: `key p`, `drag left 100 0`, `wheel 3`, `wait-pass`,
+                        `wait-cpu`, `wait-reload`, one a line
+  --frames N            quit after N passes of the progression (after the events)
+  --screenshot FILE     with --frames: save the last frame there, as the `s` key would
+keys: mouse left orbits, right pans, wheel zooms; r resets the camera, p prints it;
+  1 colour, 2 depth, 3 normal, 4 object id; c CPU reference, d GPU - CPU difference;
+  s saves a PNG; q or Esc quits
+
 difftest options:
   --scenes N            how many scenes to draw (default 100)
   --seed S              the first scene's seed (default 0): the same seeds draw the same scenes
@@ -266,6 +291,12 @@ Options parseOptions(const std::vector<std::string>& args) {
     else if (verb == "report") o.command = Command::Report;
     else if (verb == "features") o.command = Command::Features;
     else if (verb == "difftest") o.command = Command::Difftest;
+    else if (verb == "view") {
+        o.command = Command::View;
+        o.width = 960;
+        o.height = 540;
+        o.spp = 16;
+    }
     else if (verb == "shaders" && args.size() > 1 && args[1] == "check") {
         o.command = Command::ShadersCheck;
         first = 2;
@@ -329,6 +360,14 @@ Options parseOptions(const std::vector<std::string>& args) {
             throw Error("pixel: (" + positional[1] + ", " + positional[2] + ") is outside the " +
                         std::to_string(o.width) + "x" + std::to_string(o.height) +
                         " image; pass --size or a smaller X Y");
+    } else if (o.command == Command::View) {
+        if (positional.size() != 1)
+            throw Error("view: expected one scene file, e.g. `vkray view scenes/default.sdl`");
+        o.scenePath = positional[0];
+        if (!o.screenshotPath.empty() && o.frames == 0)
+            throw Error("--screenshot needs --frames N: the pass after which it is taken");
+        if (!o.screenshotPath.empty() && std::filesystem::path(o.screenshotPath).extension() != ".png")
+            throw Error("--screenshot " + o.screenshotPath + ": the screenshot is a .png file");
     } else if (o.command == Command::Report) {
         if (positional.size() != 1)
             throw Error("report: expected one scene file, e.g. `vkray report scenes/default.sdl`");

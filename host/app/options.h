@@ -15,7 +15,7 @@
 
 namespace vkray {
 
-enum class Command { Help, Version, Render, Pixel, Compare, Devices, ShadersCheck, Stress, Report, Features, Difftest };
+enum class Command { Help, Version, Render, Pixel, Compare, Devices, ShadersCheck, Stress, Report, Features, Difftest, View };
 
 // The largest image vkray renders: each side at most kMaxRenderSide and at
 // most kMaxRenderPixels in all (a Frame costs 32 bytes a pixel on the host).
@@ -50,6 +50,12 @@ struct Options {
     bool quiet = false;                                        // --quiet: no progress display
 
     bool everyVariant = false;  // shaders check --all
+
+    // view SCENE [--frames N --screenshot FILE] [--events FILE]; its --size
+    // defaults to 960x540 and its --spp to 16
+    int frames = 0;              // --frames N: quit after N passes (0: stay open)
+    std::string screenshotPath;  // --screenshot FILE: with --frames, the last frame saved there
+    std::string eventsPath;      // --events FILE: input replayed (app/view_events.h)
 
     // render, pixel: --precision naive|robust|fp64 (numerics/precision.h)
     Precision precision = Precision::Robust;

@@ -64,17 +64,11 @@ void FileWatcher::watchFolder(const std::string& folder) {
         if (entry.is_directory()) addWatch(entry.path().string(), "");
 }
 
-bool FileWatcher::waitForChange() {
+bool FileWatcher::readEvents() {
     alignas(inotify_event) char buffer[16 * 1024];
     bool changed = false;
-    while (!stopRequested()) {
-        pollfd p{fd_, POLLIN, 0};
-        // Once a change is seen, wait out the burst an editor's save makes.
-        const int ready = ::poll(&p, 1, changed ? 100 : 200);
-        if (ready == 0 && changed) return true;
-        if (ready <= 0) continue;  // timeout or EINTR: look at the stop flag again
-        const ssize_t n = ::read(fd_, buffer, sizeof buffer);
-        for (ssize_t at = 0; n > 0 && at < n;) {
+    for (ssize_t n; (n = ::read(fd_, buffer, sizeof buffer)) > 0;) {
+        for (ssize_t at = 0; at < n;) {
             const auto* event = reinterpret_cast<const inotify_event*>(buffer + at);
             const auto watched = names_.find(event->wd);
             if (watched != names_.end() && event->len > 0)
@@ -83,7 +77,28 @@ bool FileWatcher::waitForChange() {
             at += ssize_t(sizeof(inotify_event) + event->len);
         }
     }
+    return changed;
+}
+
+bool FileWatcher::waitForChange() {
+    bool changed = false;
+    while (!stopRequested()) {
+        pollfd p{fd_, POLLIN, 0};
+        // Once a change is seen, wait out the burst an editor's save makes.
+        const int ready = ::poll(&p, 1, changed ? 100 : 200);
+        if (ready == 0 && changed) return true;
+        if (ready <= 0) continue;  // timeout or EINTR: look at the stop flag again
+        changed = readEvents() || changed;
+    }
     return false;
+}
+
+bool FileWatcher::changed() {
+    const auto now = std::chrono::steady_clock::now();
+    if (readEvents()) lastChange_ = now;
+    if (!lastChange_ || now - *lastChange_ < std::chrono::milliseconds(100)) return false;
+    lastChange_.reset();
+    return true;
 }
 
 }  // namespace vkray

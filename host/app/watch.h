@@ -2,7 +2,9 @@
 // cleanly on Ctrl-C.
 #pragma once
 
+#include <chrono>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -35,8 +37,15 @@ public:
     // (false). Changes that follow within 100 ms count as the same one.
     bool waitForChange();
 
+    // Without waiting (`vkray view` between tiles): true once a watched file
+    // has changed and 100 ms have passed without another change.
+    bool changed();
+
 private:
     void addWatch(const std::string& folder, const std::string& name);
+    // Reads the events there are; true when one is about a watched file.
+    bool readEvents();
+    std::optional<std::chrono::steady_clock::time_point> lastChange_;
     int fd_ = -1;
     std::map<int, std::set<std::string>> names_;  // watch -> names; "" = any
 };

@@ -84,9 +84,19 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& device, int index) {
     return info;
 }
 
-vk::raii::Instance createInstance(vk::raii::Context& context, bool validation) {
+vk::raii::Instance createInstance(vk::raii::Context& context, bool validation,
+                                  const std::vector<std::string>& surfaceExtensions = {}) {
     vk::ApplicationInfo app("vkray", 1, "vkray", 1, VK_API_VERSION_1_2);
     std::vector<const char*> layers, extensions;
+    for (const std::string& name : surfaceExtensions) {
+        bool found = false;
+        for (const auto& extension : context.enumerateInstanceExtensionProperties())
+            found = found || name == extension.extensionName.data();
+        if (!found)
+            throw Error("the Vulkan loader lacks " + name + ", which a window needs; install a "
+                        "Vulkan driver with window-system support (on Debian: mesa-vulkan-drivers)");
+        extensions.push_back(name.c_str());
+    }
     if (validation) {
         bool found = false;
         for (const auto& layer : context.enumerateInstanceLayerProperties())
@@ -207,7 +217,7 @@ std::vector<DeviceInfo> Context::listDevices(int* preferred) {
 Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()) {
     Impl& s = *impl_;
     try {
-        s.instance = createInstance(s.context, options.validation);
+        s.instance = createInstance(s.context, options.validation, options.surfaceExtensions);
     } catch (const vk::IncompatibleDriverError&) {
         throw Error(std::string("no Vulkan driver found; ") + kDeviceAdvice);
     } catch (const Error&) {
@@ -265,7 +275,19 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     // Double in shaders (--precision fp64) where the device has it.
     vk::PhysicalDeviceFeatures enabled;
     enabled.shaderFloat64 = s.info.shaderFloat64;
-    vk::DeviceCreateInfo deviceInfo({}, queueInfo, {}, {}, &enabled);
+    std::vector<const char*> deviceExtensions;
+    if (options.swapchain) {
+        bool found = false;
+        for (const auto& extension : s.physicalDevice.enumerateDeviceExtensionProperties())
+            found = found || std::strcmp(extension.extensionName.data(),
+                                         VK_KHR_SWAPCHAIN_EXTENSION_NAME) == 0;
+        if (!found)
+            throw Error("the Vulkan device " + std::to_string(s.info.index) + " (" + s.info.name +
+                        ") cannot present to a window (no " VK_KHR_SWAPCHAIN_EXTENSION_NAME
+                        "); choose another with --device, or use `vkray render --watch`");
+        deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    }
+    vk::DeviceCreateInfo deviceInfo({}, queueInfo, {}, deviceExtensions, &enabled);
     s.device = vk::raii::Device(s.physicalDevice, deviceInfo);
     s.queue = s.device.getQueue(s.queueFamily, 0);
     s.commandPool = vk::raii::CommandPool(

@@ -35,6 +35,10 @@ struct ContextOptions {
     int deviceIndex = -1;    // -1: prefer a discrete GPU, then integrated, ..., then lavapipe
     bool validation = false; // enable VK_LAYER_KHRONOS_validation
     int shareIndex = 0;      // automatic choice: this process's index among those on its node
+    // A window to present to (`vkray view`): the instance extensions its
+    // window system's surfaces need, and VK_KHR_swapchain on the device.
+    std::vector<std::string> surfaceExtensions;
+    bool swapchain = false;
 };
 
 class Context {

@@ -140,7 +140,8 @@ public:
     TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
               bool doubles, const Scene& scene, const CameraBasis& camera,
               const RenderSettings& settings, int tile)
-        : c_(c), pipeline_(pipeline) {
+        : c_(c), pipeline_(pipeline), firstSample_(uint(settings.firstSample)),
+          endSample_(uint(sampleEnd(settings))) {
         const GpuScene packed = packScene(scene, features);
         const size_t debugEntries = 4 + scene.objects.size() + scene.lights.size();
         const size_t raysPerSide = size_t((tile + settings.block - 1) / settings.block);
@@ -257,7 +258,8 @@ public:
     GpuDispatchStatus dispatch(int tx, int ty, int w, int h, int block, uint turnBudget, bool first) {
         const uint raysX = uint((w + block - 1) / block), raysY = uint((h + block - 1) / block);
         const TileParams tileParams{{uint(tx), uint(ty), uint(w), uint(h)},
-                                    {turnBudget, first ? 1u : 0u, kCanaryTurns, raysX}};
+                                    {turnBudget, first ? 1u : 0u, kCanaryTurns, raysX},
+                                    {firstSample_, endSample_, 0u, 0u}};
         const GpuDispatchStatus zero{};
         buffer(BINDING_STATUS).upload(&zero, sizeof zero);
         commands_.reset();
@@ -289,6 +291,13 @@ public:
     const GpuPixel* pixels() const {
         return static_cast<const GpuPixel*>(buffer(BINDING_PIXELS).data());
     }
+    std::uint64_t pixelBuffer() const {
+        const VkBuffer handle = buffer(BINDING_PIXELS).buffer();
+        std::uint64_t bits = 0;
+        static_assert(sizeof bits == sizeof handle);
+        std::memcpy(&bits, &handle, sizeof bits);
+        return bits;
+    }
     const GpuDebugHeader& debugHeader() const {
         return *static_cast<const GpuDebugHeader*>(buffer(BINDING_DEBUG).data());
     }
@@ -312,6 +321,7 @@ private:
     Context::Impl& c_;
     const Pipeline& pipeline_;
     std::map<uint, BindingKind> kinds_;  // the variant's bindings
+    uint firstSample_, endSample_;  // the samples each ray traces
     std::map<uint, std::unique_ptr<HostBuffer>> buffers_;  // by binding
     std::vector<vk::raii::BufferView> views_;  // of the texel buffers
     vk::raii::DescriptorPool pool_ = nullptr;
@@ -351,6 +361,8 @@ GpuTracer::GpuTracer(Context& context, GpuRenderOptions options)
 
 GpuTracer::~GpuTracer() = default;
 
+void GpuTracer::setTileListener(TileListener listener) { tileListener_ = std::move(listener); }
+
 const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRenderStats& stats) {
     requirePrecisionSupported(options_.precision, context_.device());
     ShaderSource source =
@@ -362,7 +374,11 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     }
     stats.shader = loadOrCompile(source);
     stats.variant = describe(features);
-    if (pipeline_ && pipeline_->key == stats.shader.key) return *pipeline_;
+    for (auto kept = pipelines_.begin(); kept != pipelines_.end(); ++kept) {
+        if ((*kept)->key != stats.shader.key) continue;
+        std::rotate(kept, kept + 1, pipelines_.end());  // the last used goes last
+        return *pipelines_.back();
+    }
 
     Context::Impl& c = context_.impl();
     auto p = std::make_unique<Pipeline>();
@@ -384,8 +400,9 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
         c.device, nullptr,
         vk::ComputePipelineCreateInfo(
             {}, {{}, vk::ShaderStageFlagBits::eCompute, *p->module, "main"}, *p->layout));
-    pipeline_ = std::move(p);
-    return *pipeline_;
+    if (pipelines_.size() == kPipelinesKept) pipelines_.erase(pipelines_.begin());
+    pipelines_.push_back(std::move(p));
+    return *pipelines_.back();
 }
 
 Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera,
@@ -402,6 +419,7 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
     const auto setupStart = Clock::now();
     if (settings.spp < 1 || settings.spp > kMaxSpp)
         throw Error("render: samples per pixel must be from 1 to " + std::to_string(kMaxSpp));
+    const int samples = sampleEnd(settings) - settings.firstSample;  // traced per pixel
     const ShaderFeatures features =
         variantFeatures(scene, settings, options_.allFeatures, options_.precision);
     const Pipeline& pipeline = pipelineFor(features, st);
@@ -410,7 +428,7 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
     // and where the device's buffer or workgroup limits need it.
     const int block = settings.block;
     const int side = std::max(std::min(16, options_.tileSize),
-                              options_.tileSize / int(std::ceil(std::sqrt(double(settings.spp)))));
+                              options_.tileSize / int(std::ceil(std::sqrt(double(samples)))));
     // Per pixel at most (a ray per pixel): its pixel, progress and pending rays.
     const bool rayStack = features.has(Shading::Reflection) || features.has(Shading::Refraction);
     const size_t pixelBytes =
@@ -433,7 +451,7 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
     st.tilesRedone = 0;
     st.rays = 0;
     const size_t totalRays = size_t((settings.width + block - 1) / block) *
-                             size_t((settings.height + block - 1) / block) * size_t(settings.spp);
+                             size_t((settings.height + block - 1) / block) * size_t(samples);
     if (progress && !progress(0, totalRays)) throw Interrupted();
     uint turnBudget = options_.turnBudget > 0 ? uint(options_.turnBudget) : kTurnBudget;
     AllTilesInRows everyTile(options_.serpentineTiles);
@@ -446,19 +464,22 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
             const int tx = given->x + piece.x, ty = given->y + piece.y;
             const int w = piece.width, h = piece.height;
             pass.traceTile(tx, ty, w, h, block, turnBudget, st);
+            if (tileListener_) tileListener_(TracedTile{{tx, ty, w, h}, pass.pixelBuffer()});
             const GpuPixel* pixels = pass.pixels();
+            const bool aovs = settings.firstSample == 0;  // sample 0 traced
             for (int y = 0; y < h; ++y) {
                 for (int x = 0; x < w; ++x) {
                     const GpuPixel& p = pixels[size_t(y) * size_t(w) + size_t(x)];
                     const size_t i = frame.index(tx + x, ty + y);
                     frame.color[i] = {p.color.x, p.color.y, p.color.z};
+                    if (!aovs) continue;
                     frame.depth[i] = p.color.w;
                     frame.normal[i] = {p.normal.x, p.normal.y, p.normal.z};
                     std::memcpy(&frame.id[i], &p.normal.w, sizeof(std::int32_t));
                 }
             }
             st.rays += size_t((w + block - 1) / block) * size_t((h + block - 1) / block) *
-                       size_t(settings.spp);
+                       size_t(samples);
             ++st.tiles;
             if (progress && !progress(st.rays, totalRays)) throw Interrupted();
         }
@@ -486,6 +507,8 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
     // The debug record describes one ray: the pixel's centre, one sample.
     RenderSettings oneSample = settings;
     oneSample.spp = 1;
+    oneSample.firstSample = 0;
+    oneSample.sampleCount = 0;
     ShaderFeatures features =
         variantFeatures(scene, oneSample, options_.allFeatures, options_.precision);
     features.shading[size_t(Shading::Antialias)] = false;

@@ -16,6 +16,8 @@
 #include "scene/tile_schedule.h"
 
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -61,6 +63,14 @@ ShaderSource variantSource(const std::string& shaderDirectory, const ShaderFeatu
 
 struct Pipeline;
 
+// A tile just traced, its pixels still in the device's buffer: what `vkray
+// view` copies to its window on the device (gpu/presenter.h).
+struct TracedTile {
+    TileRect rect;                  // pixels of the image
+    std::uint64_t pixelBuffer = 0;  // its VkBuffer: GpuPixel[rect.width * rect.height], row-major
+};
+using TileListener = std::function<void(const TracedTile&)>;
+
 // The render the device cannot do right: one ray needs more loop turns than
 // the driver runs in one invocation (llvmpipe's loop limit). It is refused
 // rather than drawn wrong.
@@ -95,12 +105,20 @@ public:
                           const RenderSettings& settings, int x, int y,
                           GpuRenderStats* stats = nullptr);
 
+    // From now on `listener` hears of each tile render() traces, after the
+    // device has finished it and before the next one starts ({}: none).
+    void setTileListener(TileListener listener);
+
 private:
     const Pipeline& pipelineFor(const ShaderFeatures& features, GpuRenderStats& stats);
 
     Context& context_;
     GpuRenderOptions options_;
-    std::unique_ptr<Pipeline> pipeline_;  // the last variant's, reused while it stays
+    // The last two variants' pipelines, reused while they stay: `vkray view`
+    // goes back and forth between its block passes' and its samples'.
+    static constexpr std::size_t kPipelinesKept = 2;
+    std::vector<std::unique_ptr<Pipeline>> pipelines_;  // the last used last
+    TileListener tileListener_;
 };
 
 }  // namespace vkray::gpu

@@ -57,7 +57,8 @@ static_assert(offsetof(GpuDoubleObject, parameters) == 96);
 static_assert(sizeof(GpuDoubleObject) == 128);
 
 static_assert(offsetof(TileParams, work) == 16);
-static_assert(sizeof(TileParams) == 32);
+static_assert(offsetof(TileParams, samples) == 32);
+static_assert(sizeof(TileParams) == 48);
 static_assert(offsetof(GpuRayProgress, color) == 16);
 static_assert(sizeof(GpuRayProgress) == 32);
 static_assert(sizeof(GpuDispatchStatus) == 16);
@@ -66,6 +67,9 @@ static_assert(sizeof(GpuRayTask) == 64);
 static_assert(offsetof(GpuDoubleRayTask, weight) == 64);
 static_assert(sizeof(GpuDoubleRayTask) == 96);
 
+static_assert(offsetof(PresentParams, mode) == 16);
+static_assert(offsetof(PresentParams, range) == 32);
+static_assert(sizeof(PresentParams) == 48);
 static_assert(offsetof(GpuPixel, color) == 0);
 static_assert(offsetof(GpuPixel, normal) == 16);
 static_assert(sizeof(GpuPixel) == 32);

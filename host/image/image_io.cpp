@@ -451,6 +451,8 @@ std::string temporaryPathFor(const std::string& path) {
 
 }  // namespace
 
+unsigned char pngByte(float value) { return toByte(value); }
+
 Image colorImage(const Frame& frame) {
     Image image{frame.width, frame.height, 3, {}};
     image.pixels.reserve(frame.pixelCount() * 3);

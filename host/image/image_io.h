@@ -29,6 +29,10 @@ Image depthImage(const Frame& frame);   // 1 channel: depth (+inf on a miss)
 Image normalImage(const Frame& frame);  // 3 channels: world normal
 Image idImage(const Frame& frame);      // 1 channel: object id as float (-1 = background)
 
+// A colour channel as a PNG stores it: clamped to [0,1], times 255, rounded
+// (NaN: 0). `vkray view` converts on the device to these very bytes.
+unsigned char pngByte(float value);
+
 // By extension: .png (3 channels written as RGB8; 1 channel as grey), .pfm
 // (PF for 3 channels, Pf for 1; little-endian, bottom-to-top rows as the
 // format requires) or .exr (float channels R, G, B, or Y for 1 channel;

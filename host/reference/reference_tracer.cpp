@@ -42,14 +42,15 @@ struct PixelValue {
 
 PixelValue tracePixelSamples(const WhittedShader& shader, const CameraBasis& camera,
                              const RenderSettings& settings, int x, int y) {
-    const int samples = std::max(settings.spp, 1);
+    const int end = sampleEnd(settings);
     glm::dvec3 sum(0);
     std::optional<WorldHit> first;
-    for (int k = 0; k < samples; ++k) {
+    for (int k = settings.firstSample; k < end; ++k) {
         const Ray ray = primaryRay(camera, settings, jitteredSample(x, y, settings, k));
         sum += shader.radiance(ray, 0, Medium{}, k == 0 ? &first : nullptr);
     }
-    const glm::vec3 color(sum / double(samples));
+    const glm::vec3 color(sum / double(end - settings.firstSample));
+    if (settings.firstSample > 0) return {color, 0, glm::vec3(0), -1};  // as Frame() makes them
     if (!first) return {color, std::numeric_limits<float>::infinity(), glm::vec3(0), -1};
     return {color, float(first->t), glm::vec3(first->normal), first->object};
 }
@@ -120,6 +121,7 @@ Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings
     if (settings.spp < 1 || settings.spp > kMaxSpp)
         throw Error("render: samples per pixel must be 1.." + std::to_string(kMaxSpp) +
                     " (got " + std::to_string(settings.spp) + ")");
+    sampleEnd(settings);  // the samples asked for are among the pixel's
     const int block = std::max(settings.block, 1);
     Frame frame(settings.width, settings.height);
 

@@ -137,6 +137,17 @@ std::vector<glm::vec3> hitPoints(const Frame& frame, const CameraBasis& camera,
     return points;
 }
 
+int sampleEnd(const RenderSettings& settings) {
+    const int end = settings.sampleCount > 0 ? settings.firstSample + settings.sampleCount
+                                             : settings.spp;
+    if (settings.firstSample < 0 || settings.sampleCount < 0 || settings.firstSample >= end ||
+        end > settings.spp)
+        throw Error("render: samples " + std::to_string(settings.firstSample) + " .. " +
+                    std::to_string(end - 1) + " are not among the pixel's " +
+                    std::to_string(settings.spp));
+    return end;
+}
+
 PixelSample primarySample(int x, int y, int block) {
     if (block <= 1) return {x + 0.5, y + 0.5};
     const int x0 = x - x % block, y0 = y - y % block;

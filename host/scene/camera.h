@@ -23,8 +23,18 @@ struct RenderSettings {
     int block = 1;
     int spp = 1;              // 1..kMaxSpp; 1: the pixel (block) centre
     std::uint32_t seed = 0;
+    // The samples traced, of the spp each pixel has: sampleCount of them
+    // from firstSample on (0: all from there). The colour is their mean; the
+    // AOVs are sample 0's, so with firstSample > 0 they stay as Frame() made
+    // them. `vkray view` traces one sample a pass and sums the passes.
+    int firstSample = 0;
+    int sampleCount = 0;
 };
 inline constexpr int kMaxSpp = 4096;
+
+// The end of the samples `settings` traces (one past the last); throws
+// Error unless 0 <= firstSample < end <= spp.
+int sampleEnd(const RenderSettings& settings);
 
 // Hill's camera basis: n points from the look point back to the eye, u right,
 // v up. A primary ray through image point (sx, sy) in [-1, 1]^2 (x right, y up)

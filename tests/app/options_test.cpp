@@ -111,5 +111,35 @@ TEST(Options, BadSamplesOrSeedNameTheFlag) {
               std::string::npos);
 }
 
+TEST(Options, ViewDefaultsAndItsOwnFlags) {
+    const Options o = parse({"view", "s.sdl", "--frames", "5", "--screenshot", "a.png", "--events", "e.txt",
+                             "--fail", "0.1", "--eye", "1,2,3"});
+    EXPECT_EQ(o.command, Command::View);
+    EXPECT_EQ(o.scenePath, "s.sdl");
+    EXPECT_EQ(o.width, 960);
+    EXPECT_EQ(o.height, 540);
+    EXPECT_EQ(o.spp, 16);
+    EXPECT_EQ(o.frames, 5);
+    EXPECT_EQ(o.screenshotPath, "a.png");
+    EXPECT_EQ(o.eventsPath, "e.txt");
+    EXPECT_EQ(*o.failThreshold, 0.1);
+    EXPECT_EQ(parse({"view", "s.sdl", "--size", "64x48", "--spp", "2"}).width, 64);
+    EXPECT_EQ(parse({"view", "s.sdl", "--size", "64x48", "--spp", "2"}).spp, 2);
+}
+
+TEST(Options, ViewRefusesWhatItDoesNotDo) {
+    EXPECT_NE(errorOf({"view", "s.sdl", "--screenshot", "a.png"}).find("--screenshot needs --frames N"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"view", "s.sdl", "--frames", "2", "--screenshot", "a.jpg"}).find("is a .png file"),
+              std::string::npos);
+    for (const char* flag : {"--block", "-o", "--aov", "--check"})
+        EXPECT_NE(errorOf({"view", "s.sdl", flag, "4"}).find("unknown option '" + std::string(flag) + "' for `vkray view`"),
+                  std::string::npos) << flag;
+    EXPECT_NE(errorOf({"view", "s.sdl", "--cpu"}).find("unknown option '--cpu'"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--frames", "2"}).find("unknown option '--frames'"), std::string::npos);
+    EXPECT_NE(errorOf({"view"}).find("view: expected one scene file"), std::string::npos);
+    EXPECT_NE(errorOf({"view", "s.sdl", "--frames", "0"}).find("--frames: 0 is out of range"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace vkray

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace vkray {
 namespace {
@@ -133,6 +134,39 @@ TEST(GpuTracer, TilesStitchIntoTheSameImage) {
     EXPECT_EQ(smallStats.tiles, 4u * 3u);
     EXPECT_EQ(a.color, b.color);
     EXPECT_EQ(a.id, b.id);
+}
+
+TEST(GpuTracer, SamplesTracedOneAtATimeSumToTheWholeRender) {
+    // `vkray view` traces the spp samples one a pass and sums them in order,
+    // as the shader sums them within one dispatch: the mean is the very same
+    // float. The scene has a mirror and glass, so samples take secondary rays.
+    Scene scene = parseSdl(
+        "camera eye 0 1 5 look 0 0 0 up 0 1 0 fov 40\nlight 3 4 5 1 1 1\n"
+        "reflectivity 0.5 sphere\n"
+        "reflectivity 0 transparency 0.8 speedOfLight 0.7 translate 1.2 0.3 1 scale 0.4 0.4 0.4 sphere\n",
+        "samples.sdl", {});
+    loadSceneGeometry(scene, false, nullptr);
+    RenderSettings all{24, 18, 1, 5, 7};
+    const CameraBasis camera = makeCameraBasis(*scene.camera, all.width, all.height);
+    const Frame whole = test::renderOnGpu(scene, camera, all);
+    std::vector<glm::vec3> sum(whole.pixelCount());
+    for (int k = 0; k < all.spp; ++k) {
+        RenderSettings one = all;
+        one.firstSample = k;
+        one.sampleCount = 1;
+        const Frame part = test::renderOnGpu(scene, camera, one);
+        for (size_t i = 0; i < part.pixelCount(); ++i) {
+            sum[i] = k == 0 ? part.color[i] : sum[i] + part.color[i];
+            if (k == 0) ASSERT_EQ(part.id[i], whole.id[i]);
+            else ASSERT_EQ(part.id[i], -1) << "sample " << k << " gave AOVs";
+        }
+    }
+    for (size_t i = 0; i < whole.pixelCount(); ++i) {
+        const glm::vec3 mean = sum[i] / float(all.spp);
+        ASSERT_EQ(mean.x, whole.color[i].x) << i;
+        ASSERT_EQ(mean.y, whole.color[i].y) << i;
+        ASSERT_EQ(mean.z, whole.color[i].z) << i;
+    }
 }
 
 }  // namespace

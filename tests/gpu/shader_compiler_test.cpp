@@ -121,5 +121,12 @@ TEST(SpirvCache, KeyFollowsSourcesAndDefinesAndSecondLoadHits) {
     else ::unsetenv("VKRAY_CACHE_DIR");
 }
 
+TEST(ShaderCompiler, CompilesTheViewsPresentShader) {
+    // `vkray view`'s shader compiles without a window (its tests need an X server).
+    const std::vector<std::uint32_t> spirv = compileComputeShader({test::kShaderDir, "present.comp", {}});
+    ASSERT_FALSE(spirv.empty());
+    EXPECT_EQ(spirv[0], kSpirvMagic);
+}
+
 }  // namespace
 }  // namespace vkray::gpu

@@ -307,5 +307,15 @@ TEST_F(ImageIo, WriteAovsWritesDepthNormalAndIds) {
     EXPECT_EQ(ids.pixels, (std::vector<float>{3, -1}));
 }
 
+TEST(PngByte, RoundsClampsAndReadsBackEveryByte) {
+    EXPECT_EQ(pngByte(-1.0f), 0);
+    EXPECT_EQ(pngByte(2.0f), 255);
+    EXPECT_EQ(pngByte(std::nanf("")), 0);
+    EXPECT_EQ(pngByte(0.5f / 255), 1);  // half rounds up
+    EXPECT_EQ(pngByte(std::nextafter(0.5f / 255, 0.0f)), 0);
+    // The view's screenshot holds byte b as b / 255: each reads back as b.
+    for (int b = 0; b < 256; ++b) EXPECT_EQ(pngByte(float(b) / 255.0f), b) << b;
+}
+
 }  // namespace
 }  // namespace vkray

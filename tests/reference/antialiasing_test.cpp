@@ -9,10 +9,12 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace vkray::reference {
 namespace {
@@ -118,6 +120,49 @@ TEST(AntiAliasing, RefusesSampleCountsOutsideTheRange) {
                       std::string::npos)
                 << e.what();
         }
+    }
+}
+
+TEST(AntiAliasing, SamplesTracedOneAtATimeAverageToTheWhole) {
+    // `vkray view` traces the samples one a pass: sample k alone is the k-th
+    // term of the whole render's mean, and only sample 0 gives AOVs. (In
+    // double the sum of the parts need not be the very bits of the whole: a
+    // bound of a few ulps of a colour in [0, 1].)
+    const Scene scene = edgeScene();
+    const Frame whole = renderWith(scene, settings(5, 3));
+    std::vector<glm::dvec3> sum(whole.pixelCount(), glm::dvec3(0));
+    for (int k = 0; k < 5; ++k) {
+        RenderSettings one = settings(5, 3);
+        one.firstSample = k;
+        one.sampleCount = 1;
+        const Frame part = renderWith(scene, one);
+        for (size_t i = 0; i < part.pixelCount(); ++i) {
+            sum[i] += glm::dvec3(part.color[i]);
+            if (k > 0) {
+                ASSERT_EQ(part.id[i], -1) << "sample " << k << " gave AOVs";
+                ASSERT_EQ(part.depth[i], 0.0f);
+            } else {
+                ASSERT_EQ(part.id[i], whole.id[i]);
+                ASSERT_EQ(part.depth[i], whole.depth[i]);
+            }
+        }
+    }
+    for (size_t i = 0; i < whole.pixelCount(); ++i)
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(sum[i][c] / 5, whole.color[i][c], 1e-6 * std::max(1.0f, whole.color[i][c])) << i;
+}
+
+TEST(AntiAliasing, RefusesSamplesBeyondThePixels) {
+    const Scene scene = edgeScene();
+    RenderSettings beyond = settings(4, 0);
+    beyond.firstSample = 3;
+    beyond.sampleCount = 2;  // samples 3 and 4 of 0 .. 3
+    try {
+        renderWith(scene, beyond);
+        ADD_FAILURE() << "samples 3 .. 4 of 4 were accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("samples 3 .. 4 are not among the pixel's 4"),
+                  std::string::npos)
+            << e.what();
     }
 }
 
