@@ -78,7 +78,7 @@ VKRAY_CONST(uint, CSG_MAX_STACK, 4u);    // CSG lists alive at once while evalua
 VKRAY_CONST(uint, MAX_RECURSION_DEPTH, 64u);  // maxRecursionDepth (kMaxRecursionDepth on the host)
 VKRAY_CONST(uint, MEDIUM_STACK_SIZE, 4u);    // nested transparent objects a ray remembers
 
-// A secondary ray's origin moves off the surface along the normal by
+// A secondary ray's origin moves off the surface (along the normal) by
 // OFFSET_SCALE times its largest coordinate, or by OFFSET_NEAR_ORIGIN_STEP
 // when every coordinate is within OFFSET_NEAR_ORIGIN of 0 (float modes;
 // shaders/precision.glsl offsetOrigin, replayed by host/numerics/feelers.cpp).
@@ -101,6 +101,11 @@ VKRAY_CONST(float, OFFSET_NEAR_ORIGIN_STEP, 1.0 / 65536.0);
 // of size 2000 to 1e5 seen from 0.05 to 0.3): 1 u, 4 u and 16 u; 64 u
 // leaves 4 times the worst (docs/numerics.md, "Envelope").
 VKRAY_CONST(float, OFFSET_GENERIC_SCALE, 1.0 / 262144.0);
+// The step is taken along the new ray itself, up to OFFSET_MAX_FORWARD times
+// its length (rays leaving within ~83 degrees of the normal), the rest along
+// the normal: the ray stays on the exact one's line instead of running beside
+// it (precision.glsl offsetOrigin).
+VKRAY_CONST(float, OFFSET_MAX_FORWARD, 8.0);
 
 // GpuObjectGeometry.shape.z: the secondary rays a hit on the surface spawns, decided
 // on the host in double (reflectivity > minReflectivity, transparency >

@@ -37,19 +37,25 @@ const float NAIVE_EPSILON = 1e-4;
 
 // The origin of a secondary ray (shadow feeler, reflection, refraction)
 // leaving point p toward `side` (a direction; which side of the surface with
-// normal n it leaves to). The one implementation of the offset; each mode
-// keeps its own:
+// normal n it leaves to) in direction `along`. The one implementation of the
+// offset; each mode keeps its own:
 //   naive   p moved by the fixed epsilon along n (and tMin = NAIVE_EPSILON);
-//   robust  after Ray Tracing Gems ch. 6 (Waechter and Binder): moved along
-//           n by a distance that grows with |p| like the rounding error of p
-//           and of the ray re-intersecting the surface: 2^-18 of the largest
-//           coordinate, 32 to 64 of its float spacings (OFFSET_SCALE of
-//           layout.h), or a small constant near the origin; and at least
-//           OFFSET_GENERIC_SCALE (2^-18 = 64 u) times genericScale, which
-//           covers the rounding of the point in the object's own generic
-//           space (see below);
+//   robust  after Ray Tracing Gems ch. 6 (Waechter and Binder): moved off
+//           the surface by a distance `step` that grows with |p| like the
+//           rounding error of p and of the ray re-intersecting the surface:
+//           2^-18 of the largest coordinate, 32 to 64 of its float spacings
+//           (OFFSET_SCALE of layout.h), or a small constant near the origin;
+//           and at least OFFSET_GENERIC_SCALE (2^-18 = 64 u) times
+//           genericScale, which covers the rounding of the point in the
+//           object's own generic space (see below);
 //   fp64    the same in double (2^-47 of the largest coordinate, 2^-45 near
 //           the origin, 2^-47 = 64 u of double times genericScale).
+// The step off the surface (along n) is taken along the ray itself, as far as
+// OFFSET_MAX_FORWARD steps do it, the rest along n: moved along n alone, the
+// ray ran beside the exact one, `step` to the side, and every edge it passed
+// (a reflected or refracted object's, a shadow's) moved by up to that, which
+// at 2^-18 of the eye's distance put GPU and CPU samples on either side of an
+// edge (docs/numerics.md); along itself it stays on the exact ray's line.
 // genericScale is the world length along n of one generic unit of the
 // surface's object times the generic shape's extent (genericScaleAlong in
 // shade.glsl): the generic point of a hit on a shape of extent ~1 is O(1),
@@ -68,7 +74,7 @@ const double OFFSET_DOUBLE_NEAR_ORIGIN_STEP = 1.0lf / 35184372088832.0lf;  // 2^
 const double OFFSET_DOUBLE_GENERIC_SCALE = 1.0lf / 140737488355328.0lf;  // 2^-47 = 64 * 2^-53
 #endif
 
-rvec3 offsetOrigin(rvec3 p, vec3 n, vec3 side, real genericScale) {
+rvec3 offsetOrigin(rvec3 p, vec3 n, vec3 side, vec3 along, real genericScale) {
     if (dot(n, side) < 0.0) n = -n;
 #if VKRAY_PRECISION_NAIVE
     return naiveOffsetRayOrigin(p, n);
@@ -81,6 +87,9 @@ rvec3 offsetOrigin(rvec3 p, vec3 n, vec3 side, real genericScale) {
     real step = largest < OFFSET_NEAR_ORIGIN ? OFFSET_NEAR_ORIGIN_STEP : OFFSET_SCALE * largest;
     step = max(step, OFFSET_GENERIC_SCALE * genericScale);
 #endif
-    return p + step * rvec3(n);
+    vec3 a = normalize(along);
+    float c = dot(n, a);  // how far one unit along the ray leaves the surface
+    real forward = c > 0.0 ? min(step / real(c), real(OFFSET_MAX_FORWARD) * step) : real(0.0);
+    return p + forward * rvec3(a) + max(step - forward * real(c), real(0.0)) * rvec3(n);
 #endif
 }

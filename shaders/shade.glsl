@@ -279,9 +279,6 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
     vec3 k;
     const uint lightCount = frame.counts.x;
     uint light = lightCount;
-#if VKRAY_SHADOWS
-    rvec3 feelerOrigin;
-#endif
     // Sample 0's primary hit (the AOVs), written once after the loop.
     bool aovFound = false;
     GpuPixel aov;
@@ -293,8 +290,10 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
         real walkMax = INFINITY;
         if (feeler) {
 #if VKRAY_SHADOWS
-            walkOrigin = feelerOrigin;
-            walkDirection = lightOf(light).position.xyz - feelerOrigin;
+            // Lit lights are on m's side.
+            walkOrigin = offsetOrigin(s.p, s.geometric, s.m, lightOf(light).position.xyz - vec3(s.p),
+                                      s.genericScale);
+            walkDirection = lightOf(light).position.xyz - walkOrigin;
             walkMax = length(walkDirection);
             walkDirection /= walkMax;
 #endif
@@ -342,7 +341,6 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
                 // turns that follow (without shadows, every light now).
                 color += task.weight * (object.emissive.rgb + k * object.ambient.rgb * frame.globalAmbient.rgb);
 #if VKRAY_SHADOWS
-                feelerOrigin = offsetOrigin(s.p, s.geometric, s.m, s.genericScale);  // lit lights are on m's side
                 light = nextFacingLight(0u, object, s, v, k, record);
 #elif VKRAY_LIGHTS
                 for (uint i = 0u; i < lightCount; ++i) {
@@ -359,14 +357,14 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
                     if ((follow & FOLLOW_REFRACTION) != 0u) {
                         Medium medium = task.medium;
                         vec3 t = refracted(vec3(task.direction), s, object.material.z, medium);
-                        pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, t, s.genericScale), t,
+                        pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, t, t, s.genericScale), t,
                                              task.weight * object.material.y, task.level + 1u, medium));
                     }
 #endif
 #if VKRAY_REFLECTION
                     if ((follow & FOLLOW_REFLECTION) != 0u) {
                         rvec3 r = normalize(task.direction - 2.0 * dot(task.direction, rvec3(s.m)) * rvec3(s.m));
-                        pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, vec3(r), s.genericScale), r,
+                        pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, vec3(r), vec3(r), s.genericScale), r,
                                              task.weight * object.material.x, task.level + 1u, task.medium));
                     }
 #endif

@@ -24,8 +24,8 @@ using FVec = Vec3<float>;
 
 template <typename T>
 Vec3<T> toMode(const glm::dvec3& v) { return {T(v.x), T(v.y), T(v.z)}; }
-template <typename T>
-Vec3<T> toMode(const RVec& v) { return {T(v.x), T(v.y), T(v.z)}; }
+template <typename T, typename U>
+Vec3<T> toMode(const Vec3<U>& v) { return {T(v.x), T(v.y), T(v.z)}; }
 RVec toReal(const glm::dvec3& v) { return {Real(v.x), Real(v.y), Real(v.z)}; }
 template <typename T>
 RVec toRealVec(const Vec3<T>& v) { return {Real(v.x), Real(v.y), Real(v.z)}; }
@@ -99,17 +99,29 @@ T genericScaleAlong(const SceneObject& object, Vec3<T> n) {
              extent);
 }
 
-// shaders/precision.glsl offsetOrigin, per mode.
-FVec offsetOrigin(Precision precision, FVec p, FVec n, float genericScale) {
-    return precision == Precision::Naive ? p + kNaiveEpsilon * n
-                                         : offsetRayOriginRobust(p, n, genericScale);
+// shaders/precision.glsl offsetOrigin's last step: `step` off the surface
+// (along n), taken along the ray (unit direction a) as far as
+// OFFSET_MAX_FORWARD steps do it, the rest along n. c = n . a in float, as the
+// shader has it.
+template <typename T>
+Vec3<T> stepOff(Vec3<T> p, Vec3<float> n, Vec3<float> a, T step) {
+    const float c = dot(n, a);
+    const T forward = c > 0 ? std::min(step / T(c), T(gpu::OFFSET_MAX_FORWARD) * step) : T(0);
+    return p + forward * toMode<T>(a) + std::max(step - forward * T(c), T(0)) * toMode<T>(n);
 }
-Vec3<double> offsetOrigin(Precision, Vec3<double> p, Vec3<double> n, double genericScale) {
+
+// shaders/precision.glsl offsetOrigin, per mode; `along` is the new ray's direction.
+FVec offsetOrigin(Precision precision, FVec p, FVec n, FVec along, float genericScale) {
+    return precision == Precision::Naive ? p + kNaiveEpsilon * n
+                                         : offsetRayOriginRobust(p, n, along, genericScale);
+}
+Vec3<double> offsetOrigin(Precision, Vec3<double> p, Vec3<double> n, Vec3<double> along,
+                          double genericScale) {
     // OFFSET_DOUBLE_* of shaders/precision.glsl
     constexpr double kScale = 0x1p-47, kNearOriginStep = 0x1p-45, kGenericScale = 0x1p-47;
     const double largest = std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
     const double step = std::max(std::max(kScale * largest, kNearOriginStep), kGenericScale * genericScale);
-    return p + step * n;
+    return stepOff(p, toMode<float>(n), normalize(toMode<float>(along)), step);
 }
 
 template <typename T>
@@ -178,8 +190,8 @@ FeelerStats shadowFeelerAcneIn(const Scene& scene, const CameraBasis& camera,
             traced = true;
             // Unit direction: t and the fixed epsilon are world distances.
             const T distance = length(toLight);
-            const Vec3<T> origin =
-                offsetOrigin(precision, px.p, px.n, genericScaleAlong(*object.object, px.n));
+            const Vec3<T> origin = offsetOrigin(precision, px.p, px.n, toLight,
+                                                genericScaleAlong(*object.object, px.n));
             const T t = firstCrossing(modeCrossings(object, origin, toLight / distance),
                                       tMinOf<T>(precision), distance);
             if (t < 0) continue;
@@ -226,7 +238,7 @@ FeelerStats refractionExitErrorsIn(const Scene& scene, const CameraBasis& camera
             if (truth.at[k].t > Real(1e-6) * px.tTrue) exitTrue = truth.at[k].t;
         if (exitTrue < 0) return;  // grazing entry: no path through
         ++stats.traced;
-        const Vec3<T> origin = offsetOrigin(precision, px.p, T(-1) * px.n,
+        const Vec3<T> origin = offsetOrigin(precision, px.p, T(-1) * px.n, dIn,
                                             genericScaleAlong(*object.object, px.n));
         const T exit = firstCrossing(modeCrossings(object, origin, dIn), tMinOf<T>(precision),
                                      std::numeric_limits<T>::infinity());
@@ -247,12 +259,13 @@ FeelerStats refractionExitErrorsIn(const Scene& scene, const CameraBasis& camera
 
 }  // namespace
 
-Vec3<float> offsetRayOriginRobust(Vec3<float> p, Vec3<float> n, float genericScale) {
+Vec3<float> offsetRayOriginRobust(Vec3<float> p, Vec3<float> n, Vec3<float> along,
+                                  float genericScale) {
     // shaders/layout.h: the shader's constants.
     const float largest = std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
     const float step = largest < gpu::OFFSET_NEAR_ORIGIN ? gpu::OFFSET_NEAR_ORIGIN_STEP
                                                          : gpu::OFFSET_SCALE * largest;
-    return p + std::max(step, gpu::OFFSET_GENERIC_SCALE * genericScale) * n;
+    return stepOff(p, n, normalize(along), std::max(step, gpu::OFFSET_GENERIC_SCALE * genericScale));
 }
 
 FeelerStats shadowFeelerAcne(const Scene& scene, const CameraBasis& camera,

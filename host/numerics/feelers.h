@@ -48,11 +48,14 @@ FeelerStats refractionExitErrors(const Scene& scene, const CameraBasis& camera,
                                  const std::vector<ModeSample>& samples, Precision precision);
 
 // Robust mode's secondary-ray origin (shaders/precision.glsl offsetOrigin):
-// p moved along n by OFFSET_SCALE times its largest coordinate, or by
-// OFFSET_NEAR_ORIGIN_STEP near the origin, and by at least
+// p moved off the surface (along n) by OFFSET_SCALE times its largest
+// coordinate, or by OFFSET_NEAR_ORIGIN_STEP near the origin, and by at least
 // OFFSET_GENERIC_SCALE times genericScale (the world length along n of the
-// object's generic rounding unit: shaders/shade.glsl genericScaleAlong). n is
-// the geometric normal on the side the new ray leaves from.
-Vec3<float> offsetRayOriginRobust(Vec3<float> p, Vec3<float> n, float genericScale = 0);
+// object's generic rounding unit: shaders/shade.glsl genericScaleAlong); that
+// step taken along the new ray's direction `along` as far as
+// OFFSET_MAX_FORWARD steps do it, the rest along n. n is the geometric normal
+// on the side the new ray leaves from.
+Vec3<float> offsetRayOriginRobust(Vec3<float> p, Vec3<float> n, Vec3<float> along,
+                                  float genericScale = 0);
 
 }  // namespace vkray::numerics

@@ -66,12 +66,12 @@ TEST(NumericsEnvelope, HugeSphereSeenFromCloseHasNoShadowAcneInFp64) {
 TEST(NumericsEnvelope, RobustOffsetCoversTheObjectsGenericRounding) {
     using numerics::offsetRayOriginRobust;
     // Near the eye the eye-sized step is 2^-18 of the largest coordinate (0.5).
-    EXPECT_EQ(offsetRayOriginRobust({0.5f, 0.1f, 0}, {0, 1, 0}).y, 0.1f + 0.5f / 262144.0f);
+    EXPECT_EQ(offsetRayOriginRobust({0.5f, 0.1f, 0}, {0, 1, 0}, {0, 1, 0}).y, 0.1f + 0.5f / 262144.0f);
     // A generic scale of 2000 (world units per generic unit along the normal) wins.
-    EXPECT_EQ(offsetRayOriginRobust({0.5f, 0.1f, 0}, {0, 1, 0}, 2000.0f).y,
+    EXPECT_EQ(offsetRayOriginRobust({0.5f, 0.1f, 0}, {0, 1, 0}, {0, 1, 0}, 2000.0f).y,
               0.1f + gpu::OFFSET_GENERIC_SCALE * 2000.0f);
     // A small one leaves the eye-sized step.
-    EXPECT_EQ(offsetRayOriginRobust({0.5f, 0.1f, 0}, {0, 1, 0}, 0.01f).y, 0.1f + 0.5f / 262144.0f);
+    EXPECT_EQ(offsetRayOriginRobust({0.5f, 0.1f, 0}, {0, 1, 0}, {0, 1, 0}, 0.01f).y, 0.1f + 0.5f / 262144.0f);
 }
 
 // The offset's floor from the object's own scale is 0 for planes and

@@ -183,14 +183,38 @@ TEST(Metrics, FlipsSilhouetteAndErrorBeyondTheBand) {
 TEST(Feelers, RobustOffsetScalesWithTheLargestCoordinate) {
     // 2^-18 of the largest coordinate (32 to 64 of its float spacings) along
     // the normal, whichever coordinate that moves: at 1e5, 0.38 along y.
-    Vec3<float> p = offsetRayOriginRobust({1e5f, 1e-3f, -1e5f}, {0, 1, 0});
+    // (Rays along the normal here: the step is all along it.)
+    Vec3<float> p = offsetRayOriginRobust({1e5f, 1e-3f, -1e5f}, {0, 1, 0}, {0, 1, 0});
     EXPECT_EQ(p.x, 1e5f);
     EXPECT_EQ(p.y, 1e-3f + 1e5f / 262144.0f);
     EXPECT_EQ(p.z, -1e5f);
     // Near the origin (every coordinate within 1/32), a fixed 1/65536.
-    EXPECT_EQ(offsetRayOriginRobust({1e-3f, 0, 0}, {-1, 0, 0}).x, 1e-3f - 1.0f / 65536.0f);
+    EXPECT_EQ(offsetRayOriginRobust({1e-3f, 0, 0}, {-1, 0, 0}, {-1, 0, 0}).x, 1e-3f - 1.0f / 65536.0f);
     // A zero normal component leaves its coordinate alone.
-    EXPECT_EQ(offsetRayOriginRobust({3.0f, 5.0f, 7.0f}, {0, 0, -1}).x, 3.0f);
+    EXPECT_EQ(offsetRayOriginRobust({3.0f, 5.0f, 7.0f}, {0, 0, -1}, {0, 0, -1}).x, 3.0f);
+}
+
+TEST(Feelers, RobustOffsetStepsAlongTheRayItself) {
+    // The step off the surface is taken along the new ray, so that it stays on
+    // the exact ray's line: leaving the plane y = 0 at 60 degrees from its
+    // normal (n . a = 1/2), the origin moves 2 steps along the ray, 1 step up.
+    const float step = 4.0f / 262144.0f;  // 2^-18 of the largest coordinate, 4
+    const float s = std::sqrt(3.0f) / 2;
+    Vec3<float> p = offsetRayOriginRobust({4, 0, 1}, {0, 1, 0}, {2 * s, 1, 0});
+    EXPECT_FLOAT_EQ(p.x, 4 + 2 * step * s);
+    EXPECT_FLOAT_EQ(p.y, step);
+    EXPECT_EQ(p.z, 1.0f);
+    // A grazing ray (n . a = 0.01) goes at most OFFSET_MAX_FORWARD = 8 steps
+    // along itself (0.08 steps up); the rest of the step is along the normal.
+    const float c = 0.01f, sc = std::sqrt(1 - c * c);
+    p = offsetRayOriginRobust({4, 0, 1}, {0, 1, 0}, {sc, c, 0});
+    EXPECT_FLOAT_EQ(p.x, 4 + 8 * step * sc);
+    EXPECT_FLOAT_EQ(p.y, step);
+    // A ray on the other side of n than the normal (a mesh's interpolated
+    // normal may send one there) moves along n alone, as before.
+    p = offsetRayOriginRobust({4, 0, 1}, {0, 1, 0}, {1, -0.5f, 0});
+    EXPECT_EQ(p.x, 4.0f);
+    EXPECT_EQ(p.y, step);
 }
 
 }  // namespace
