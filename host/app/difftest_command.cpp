@@ -51,12 +51,18 @@ Verdict judge(const std::string& path, const RandomScene& r, gpu::GpuTracer& tra
     CompareResult result = compareImages(colorImage(gpu), colorImage(cpu),
                                          {kCheckFailThreshold, kCheckFailPercent});
     compareIds(idImage(gpu), idImage(cpu), result);
-    // `render --check`'s bound, but never less than one pixel: the images
-    // are small (a few hundred pixels), and one shadow feeler or secondary
-    // ray that grazes an edge within float rounding may flip a pixel in any.
-    const double allowed = std::max(1.0, kCheckFailPercent / 100 * double(result.pixelCount));
-    v.agreed = double(result.pixelsOverThreshold) <= allowed &&
-               double(result.idMismatches.value_or(0)) <= allowed;
+    // `render --check`'s bound, counted in rays instead of pixels: float
+    // places a ray's hits to within a band along every edge (docs/numerics.md,
+    // "Envelope"), and each ray, each of a pixel's samples included, is a
+    // chance to fall in it. So 0.1 % of the rays (never less than one) may
+    // differ; one that does differs on the block x block pixels it fills.
+    // The ids are sample 0's: one ray a pixel (a block).
+    const double block = double(r.block) * double(r.block);
+    const double rays = double(result.pixelCount) / block;
+    const double allowedColours = block * std::max(1.0, kCheckFailPercent / 100 * rays * double(r.spp));
+    const double allowedIds = block * std::max(1.0, kCheckFailPercent / 100 * rays);
+    v.agreed = double(result.pixelsOverThreshold) <= allowedColours &&
+               double(result.idMismatches.value_or(0)) <= allowedIds;
     char text[160];
     std::snprintf(text, sizeof text, "%.3g %% of pixels over %.2g (largest %.3g), %.3g %% of ids differ",
                   result.percentOverThreshold, kCheckFailThreshold, result.maxAbsError,

@@ -5,8 +5,12 @@
 
 #include "scene/scene_geometry.h"
 
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -35,7 +39,7 @@ TEST(RandomScene, EverySceneLoadsAndTogetherTheyCoverTheLanguage) {
     fs::create_directories(dir);
     std::set<std::string> words;
     std::set<Precision> modes;
-    bool bvh = false, antialiased = false, blocks = false, inside = false;
+    bool bvh = false, antialiased = false, blocks = false, inside = false, near = false;
     const char* const keywords[] = {
         "sphere", "cube", "cylinder", "cone", "torus", "tetrahedron", "octahedron",
         "dodecahedron", "icosahedron", "buckyball", "teapot", "square", "plane", "mesh",
@@ -62,6 +66,14 @@ TEST(RandomScene, EverySceneLoadsAndTogetherTheyCoverTheLanguage) {
         // The eye at an object's centre: the camera line repeats a translate.
         const std::string eye = r.sdl.substr(11, r.sdl.find(" look") - 11);
         inside |= r.sdl.find("translate " + eye) != std::string::npos;
+        near |= r.reach.nearRatio > 0;
+        // The generator's |M^-1 eye| of each object is the scene reader's.
+        ASSERT_EQ(r.genericEye.size(), scene.objects.size()) << seed;
+        for (size_t i = 0; i < scene.objects.size(); ++i) {
+            const glm::dvec3 generic(scene.objects[i].objectFromWorld * glm::dvec4(scene.camera->eye, 1));
+            EXPECT_NEAR(r.genericEye[i], glm::length(generic), 1e-9 * std::max(1.0, glm::length(generic)))
+                << "seed " << seed << ", object " << i;
+        }
     }
     for (const char* word : keywords) EXPECT_TRUE(words.count(word)) << word << " never drawn";
     EXPECT_EQ(modes, (std::set<Precision>{Precision::Robust, Precision::Fp64}));
@@ -69,7 +81,76 @@ TEST(RandomScene, EverySceneLoadsAndTogetherTheyCoverTheLanguage) {
     EXPECT_TRUE(antialiased);
     EXPECT_TRUE(blocks);
     EXPECT_TRUE(inside);
+    EXPECT_TRUE(near);
     fs::remove_all(dir);
+}
+
+// Each mode's scenes reach every figure of their envelope (docs/numerics.md,
+// "Envelope"), each family its own, and none goes beyond: the distance in
+// object sizes, |M^-1 eye| of a squashed object, |M^-1 eye| per texture
+// cell, the squashes between and before rotations, a huge object's R / H
+// from close above it, a refracting solid's thickness per distance.
+// Reached: within a factor of 2 (4 for the squashes; 8 where three of ten
+// draws are not aimed at the figure's last factor of two).
+TEST(RandomScene, EachModesScenesCoverTheirWholeEnvelopeAndStayInside) {
+    for (const Precision mode : {Precision::Robust, Precision::Fp64}) {
+        const SceneEnvelope envelope = envelopeOf(mode);
+        SceneReach most[2];
+        int drawn[2] = {0, 0};
+        for (std::uint64_t seed = 0; seed < 600; ++seed) {
+            const RandomScene r = randomScene(seed, &mode);
+            const SceneReach& reach = r.reach;
+            const EnvelopeLimits& env = r.lone ? envelope.lone : envelope.scenes;
+            const std::string where = std::string(precisionName(mode)) + (r.lone ? " lone" : "") +
+                                      " seed " + std::to_string(seed);
+            EXPECT_LE(reach.eye, env.farthestEye) << where;
+            EXPECT_LE(reach.generic, env.farthestGeneric) << where;
+            EXPECT_LE(reach.perCell, env.farthestPerCell) << where;
+            EXPECT_LE(reach.worldEye, env.farthestWorldEye) << where;
+            EXPECT_GE(reach.squash, env.smallestSquash * (1 - 1e-5)) << where;
+            EXPECT_GE(reach.innerSquash, env.smallestInnerSquash * (1 - 1e-5)) << where;
+            EXPECT_LE(reach.nearRatio, env.largestNearRatio) << where;
+            EXPECT_GE(reach.thinPerDistance, env.thinnestPerDistance) << where;
+            SceneReach& m = most[r.lone];
+            ++drawn[r.lone];
+            m.eye = std::max(m.eye, reach.eye);
+            m.generic = std::max(m.generic, reach.generic);
+            m.perCell = std::max(m.perCell, reach.perCell);
+            m.squash = std::min(m.squash, reach.squash);
+            m.innerSquash = std::min(m.innerSquash, reach.innerSquash);
+            m.nearRatio = std::max(m.nearRatio, reach.nearRatio);
+            m.thinPerDistance = std::min(m.thinPerDistance, reach.thinPerDistance);
+        }
+        for (const bool lone : {false, true}) {
+            const EnvelopeLimits& env = lone ? envelope.lone : envelope.scenes;
+            const SceneReach& m = most[lone];
+            const std::string name = std::string(precisionName(mode)) + (lone ? " lone" : " scenes");
+            EXPECT_GT(drawn[lone], 100) << name;
+            EXPECT_GE(m.eye, env.farthestEye / 2) << name;
+            EXPECT_GE(m.perCell, env.farthestPerCell / 2) << name;
+            EXPECT_LE(m.squash, env.smallestSquash * 4) << name;
+            EXPECT_LE(m.innerSquash, env.smallestInnerSquash * 4) << name;
+            EXPECT_GE(m.nearRatio, env.largestNearRatio / 2) << name;
+            if (!lone) {
+                EXPECT_GE(m.generic, env.farthestGeneric / 8) << name;
+                EXPECT_LE(m.thinPerDistance, env.thinnestPerDistance * 2) << name;
+            }
+        }
+    }
+}
+
+// fp64 goes further than robust on every figure.
+TEST(RandomScene, Fp64sEnvelopeIsWiderThanRobusts) {
+    const SceneEnvelope robust = envelopeOf(Precision::Robust), fp64 = envelopeOf(Precision::Fp64);
+    for (const auto& [r, f] : {std::pair{robust.scenes, fp64.scenes}, std::pair{robust.lone, fp64.lone}}) {
+        EXPECT_GT(f.farthestEye, r.farthestEye);
+        EXPECT_GT(f.farthestGeneric, r.farthestGeneric);
+        EXPECT_GT(f.farthestPerCell, r.farthestPerCell);
+        EXPECT_LT(f.smallestSquash, r.smallestSquash);
+        EXPECT_LE(f.smallestInnerSquash, r.smallestInnerSquash);
+        EXPECT_GT(f.largestNearRatio, r.largestNearRatio);
+        EXPECT_LE(f.thinnestPerDistance, r.thinnestPerDistance);
+    }
 }
 
 }  // namespace
