@@ -5,6 +5,8 @@
 #include "support/frame_difference.h"
 #include "support/gpu_fixture.h"
 
+#include "image/image_io.h"
+#include "image/metrics.h"
 #include "reference/reference_tracer.h"
 
 #include <gtest/gtest.h>
@@ -116,6 +118,37 @@ TEST(AgreementRegressions, WoodRingsOnACylinderWall) {
                                        width + " 0.55 0.35 0.15\ncylinder\n",
                                    {96, 72}));
     }
+}
+
+// Scenes `vkray difftest` drew on which the GPU and the CPU reference
+// disagreed (tests/data/difftest/*.sdl, each file's header says why), with
+// the render settings of the run that found them, compared as `render
+// --check` compares (colours clamped to what a display shows): no pixel
+// over 0.02, object ids equal.
+void expectDifftestSceneAgrees(const std::string& name, const RenderSettings& settings,
+                               Precision precision) {
+    SCOPED_TRACE(name);
+    const Scene scene = loadScene(test::kDataDir + "/difftest/" + name, {}, nullptr);
+    const CameraBasis camera = makeCameraBasis(*scene.camera, settings.width, settings.height);
+    gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir, .precision = precision});
+    const Frame gpu = tracer.render(scene, camera, settings);
+    const Frame cpu = reference::render(scene, camera, settings);
+    CompareResult result = compareImages(colorImage(gpu), colorImage(cpu), {0.02, 0.1});
+    compareIds(idImage(gpu), idImage(cpu), result);
+    EXPECT_EQ(result.pixelsOverThreshold, 0u) << "largest difference " << result.maxAbsError;
+    EXPECT_EQ(result.idMismatches.value_or(1), 0u);
+}
+
+TEST(AgreementRegressions, AReflectionPassingACornerMissesItAsTheReferencesDoes) {
+    expectDifftestSceneAgrees("reflected_corner.sdl", {32, 24, 1, 16, 3904793813u}, Precision::Robust);
+}
+
+TEST(AgreementRegressions, MirrorsNineLevelsDeep) {
+    expectDifftestSceneAgrees("deep_mirrors.sdl", {32, 24, 1, 9, 3748471141u}, Precision::Robust);
+}
+
+TEST(AgreementRegressions, AThinUnionFarAwayIsDrawnByBoth) {
+    expectDifftestSceneAgrees("thin_union_far.sdl", {40, 30, 1, 2, 3236972483u}, Precision::Fp64);
 }
 
 }  // namespace

@@ -118,5 +118,32 @@ TEST(NumericsEnvelope, InnermostSquashOf1e8AgreesInRobust) {
         expectAgreement(std::string("squash_inner_1e-8_") + shape + ".sdl", Precision::Robust);
 }
 
+// Seen from 2000 away, a secondary ray's origin moves 0.0076 off the
+// surface; moved along the normal, reflected and shadow rays ran beside the
+// exact ones and every reflected and shadow edge moved with them (21 pixels
+// off in robust). Stepped along the rays themselves, none is, in either mode.
+TEST(NumericsEnvelope, MirroredAndShadowedEdgesSeenFromAfarStayPut) {
+    for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
+        SCOPED_TRACE(precisionName(precision));
+        const Renders r = renderBoth("far_mirror_edges.sdl", precision);
+        const test::FrameDifference d = test::frameDifference(r.gpu, r.cpu, 0.02);
+        EXPECT_EQ(d.ids, 0u);
+        EXPECT_EQ(d.over, 0u) << "largest difference " << d.maxColor;
+    }
+}
+
+// A refracted ray starts a step inside its solid (2^-18 of its distance from
+// the eye in robust) and leaks through the solid's edges where it is thinner
+// than that: a glass cone squashed by r has a rim of angle ~r. Robust holds
+// to r = 0.1 seen from ~10 (smallest scale / distance 0.017); fp64, whose
+// step is 2^-47 of the distance, to 1e-4 and beyond.
+TEST(NumericsEnvelope, FlatGlassConeAtRobustsLimitAgrees) {
+    expectAgreement("thin_glass_cone_0.1.sdl", Precision::Robust);
+}
+
+TEST(NumericsEnvelope, FlatGlassConeOf1e4AgreesInFp64) {
+    expectAgreement("thin_glass_cone_1e-4.sdl", Precision::Fp64);
+}
+
 }  // namespace
 }  // namespace vkray

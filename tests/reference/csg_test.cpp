@@ -195,6 +195,18 @@ TEST(Csg, TouchingSpansMerge) {
     EXPECT_NEAR(cube[0].exit.t, 6, kTol);
 }
 
+TEST(Csg, AThinResultFarAwayIsNoSliver) {
+    // Two cube slabs 6e-6 thick, side by side, seen face-on from 2.2e4 away: one span 6e-6 long, 2.7e-10 of t. Ends within 1e-9 of
+    // t were once taken as one, and the span removed as a sliver (where the
+    // GPU drew the slab).
+    const SceneObject slab = boolean(ShapeType::Union, placed(ShapeType::Cube, {0, 0, 0}, {1, 1, 3e-6}),
+                                     placed(ShapeType::Cube, {0.5, 0, 0}, {1, 1, 3e-6}));
+    const SpanList spans = objectSpans(kNoMeshes, slab, {{0.2, 0.1, 2.2e4}, {0, 0, -1}});
+    ASSERT_EQ(spans.size(), 1u);
+    EXPECT_NEAR(spans[0].enter.t, 2.2e4 - 3e-6, 1e-9);
+    EXPECT_NEAR(spans[0].exit.t, 2.2e4 + 3e-6, 1e-9);
+}
+
 Scene sceneWithSphereMesh(bool closed) {
     Scene scene;
     auto mesh = std::make_shared<TriangleMesh>(test::tessellatedSphere(12, 16));
