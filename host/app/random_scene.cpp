@@ -306,6 +306,10 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
         const double most = checkered ? std::min(env.farthestEye, env.farthestPerCell * cell) : env.farthestEye;
         const double distance = toward(d, 2, std::min(most, env.farthestWorldEye * (1 - 1e-5)));
         eye = written(direction * distance);
+        // Looking a little beside the centre: looking at it, the image is
+        // symmetric and pixels on the silhouette come in eights at the same
+        // distance from its middle, so one rounding is drawn eight times.
+        look = written(dvec3(d.range(-.3, .3), d.range(-.3, .3), d.range(-.3, .3)));
         r.reach.eye = glm::length(eye);
         r.reach.worldEye = r.reach.eye;
         fov = written(glm::degrees(2 * std::asin(1 / r.reach.eye)) * d.range(1.05, 1.5));
@@ -335,6 +339,7 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
         eye = written(glm::normalize(dvec3(d.range(-1, 1), d.range(-1, 1), d.range(-1, 1)) + dvec3(0, 0, 1e-3)) *
                       d.range(4, 7));
         light = eye * 1.5 + dvec3(0, 4, 0);
+        look = written(dvec3(d.range(-.3, .3), d.range(-.3, .3), d.range(-.3, .3)));
         objects = material + " texture 0\npush " + (after ? squash + " " + rotate : rotate + " " + squash) +
                   " " + shapes[shape] + " pop\n";
         // M^-1 eye: S^-1 R^T eye after the rotation, R^T S^-1 eye before it.
