@@ -406,10 +406,11 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
 
 SceneEnvelope envelopeOf(Precision precision) {
     // docs/numerics.md, "Envelope". A lone object, as its sweeps measured:
-    // robust to 6.4e4 radii (textures while |M^-1 eye| / cell <= 2e4), a
-    // squash after the rotation to 1e-4 seen from a few sizes, one before it
-    // to 1e-8, a huge sphere seen from close to R / H = 1e7; fp64 to 1e6
-    // radii (cells of 0.05 there), 1e-10 (the teapot 1e-5), R / H = 2e7.
+    // robust to 1.6e4 radii seen from any direction (textures while
+    // |M^-1 eye| / cell <= 5e3), a squash after the rotation to 1e-4 seen
+    // from a few sizes, one before it to 1e-8, a huge sphere seen from close
+    // to R / H = 1e7; fp64 to 1e6 radii (cells of 0.05 there), 1e-10 (the
+    // teapot 1e-5), R / H = 2e7.
     // Several objects, as `vkray difftest` measured them (secondary rays
     // between objects start an offset off the surface that grows with the
     // eye's distance). Every scene keeps the eye within 1e6 of the world's
@@ -420,7 +421,7 @@ SceneEnvelope envelopeOf(Precision precision) {
     case Precision::Naive: return {naive, naive};
     case Precision::Robust:
         return {{2e3, 2e3, 2e3, 1e6, 2e-3, 2e-3, 1e5, 0.02},
-                {6.4e4, 7 / 1e-8, 2e4, 1e6, 1e-4, 1e-8, 1e7, 0}};
+                {1.6e4, 7 / 1e-8, 5e3, 1e6, 1e-4, 1e-8, 1e7, 0}};
     case Precision::Fp64:
         return {{1e6, 4.3e10, 2e7, 1e6, 1e-10, 1e-8, 2e7, 0.02 * 0x1p-29},
                 {1e6, 7 / 1e-10, 2e7, 1e6, 1e-10, 1e-8, 2e7, 0}};
