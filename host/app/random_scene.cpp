@@ -68,7 +68,6 @@ dvec3 written(dvec3 v, bool precise = false) {
 std::string triple(dvec3 v, bool precise = false) {
     return num(v.x, precise) + " " + num(v.y, precise) + " " + num(v.z, precise);
 }
-std::string triple(double a, double b, double c) { return triple(dvec3(a, b, c)); }
 
 const char* const kPlainShapes[] = {"sphere", "cube", "cylinder", "cone", "torus",
                                     "tetrahedron", "octahedron", "dodecahedron", "icosahedron",
