@@ -176,6 +176,15 @@ Conditioning conditioningAt(const SceneObject& object, const glm::dvec3& eye, co
 
 }  // namespace
 
+double genericScaleAlong(const SceneObject& object, const QVec& genericNormal) {
+    const glm::dmat4& m = object.objectFromWorld;
+    const glm::dvec3 n = toDvec3(genericNormal);
+    glm::dvec3 world(0);
+    for (int column = 0; column < 3; ++column)
+        for (int row = 0; row < 3; ++row) world[column] += m[column][row] * n[row];
+    return extentOf(object) / norm(world);
+}
+
 OracleRay exactRay(const glm::dvec3& origin, const glm::dvec3& direction) {
     return {exactVec(origin), exactVec(direction)};
 }

@@ -71,6 +71,11 @@ struct WorldCrossing {
 };
 std::vector<WorldCrossing> objectCrossings(const SceneObject& object, const OracleRay& ray);
 
+// The world length, along the world normal at a hit on `object` with unit
+// generic normal n, of the size of its generic coordinates there (the
+// shape's extent, below): extent / |A^T n|.
+double genericScaleAlong(const SceneObject& object, const QVec& genericNormal);
+
 // The nearest hit with t > tMin over the scene. Hits within 1e-9 relative of
 // each other are a tie (coincident surfaces), won by the lower object index.
 OracleHit closestHit(const Scene& scene, const OracleRay& ray, const Quad& tMin = 0);

@@ -55,10 +55,19 @@ QVec refract(const QVec& d, const QVec& n, const Quad& eta) {
 
 }  // namespace
 
+OriginFootprint originFootprintOf(Precision precision) {
+    switch (precision) {
+    case Precision::Naive: return {0, 2 * 1e-4};  // NAIVE_EPSILON
+    case Precision::Robust: return {2 * 0x1p-18, 0};   // OFFSET_SCALE, OFFSET_GENERIC_SCALE
+    case Precision::Fp64: return {2 * 0x1p-47, 0};     // OFFSET_DOUBLE_*
+    }
+    return {};
+}
+
 SecondaryStats checkSecondaryRays(const Scene& scene, const CameraBasis& camera,
                                   const std::vector<OraclePixel>& oracle,
                                   const std::vector<StressSample>& samples, Arithmetic a,
-                                  int threads) {
+                                  const OriginFootprint& footprint, int threads) {
     if (oracle.size() != samples.size()) throw Error("internal: oracle and samples differ in size");
     const BVec eye = exact(toQuad(camera.eye));
     const int lights = int(std::min<size_t>(scene.lights.size(), gpu::STRESS_MAX_LIGHTS));
@@ -80,6 +89,11 @@ SecondaryStats checkSecondaryRays(const Scene& scene, const CameraBasis& camera,
                 const BVec point = eye + Bounded(o.hit.t, o.hit.tBound) * direction;
                 const BVec modePoint = eye + Bounded(Quad(s.t)) * direction;
                 const Quad tiny = kOwnSurface * o.hit.t;
+                // The mode's origin footprint at this point, along the normal.
+                const QVec fromEye = o.hit.t * o.direction;
+                const double largest = double(std::max({abs(fromEye.x), abs(fromEye.y), abs(fromEye.z)}));
+                const double scale = genericScaleAlong(scene.objects[size_t(o.hit.id)], o.hit.genericNormal);
+                const Quad reach = Quad(footprint.relative * std::max(largest, scale) + footprint.absolute);
                 bool traced = false, selfHit = false, flip = false, edge = false;
                 for (int l = 0; l < lights; ++l) {
                     const QVec light = toQuad(scene.lights[size_t(l)].position);
@@ -94,9 +108,15 @@ SecondaryStats checkSecondaryRays(const Scene& scene, const CameraBasis& camera,
                     if (s.feelerMetLeft(l) && truth.metLeft == Meets::No) selfHit = true;
                     if (s.feelerMetLeft(l) || s.feelerMet(l) == (truth.met() == Meets::Yes)) continue;
                     // A verdict the other objects decide differently from the mode's own
-                    // hit point lies on a shadow's edge (the object left is acne's to judge).
-                    const Meets fromModePoint = exactFeeler(scene, o.hit.id, modePoint, light, tiny).metOther;
-                    (fromModePoint == truth.metOther ? flip : edge) = true;
+                    // hit point, or from the exact one moved by the origin footprint, lies
+                    // on a shadow's edge (the object left is acne's to judge).
+                    bool onEdge = exactFeeler(scene, o.hit.id, modePoint, light, tiny).metOther != truth.metOther;
+                    for (const Quad& side : {Quad(1), Quad(-1)}) {
+                        if (onEdge) break;
+                        const BVec moved = point + Bounded(side * reach) * exact(o.hit.normal);
+                        onEdge = exactFeeler(scene, o.hit.id, moved, light, tiny).metOther != truth.metOther;
+                    }
+                    (onEdge ? edge : flip) = true;
                 }
                 feelerPixels += traced;
                 acne += selfHit;

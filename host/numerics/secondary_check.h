@@ -9,8 +9,11 @@
 //                 verdict (met a surface or not) differs from the exact
 //                 feeler's, where the other objects decide the exact feeler
 //                 the same from the mode's own hit point (else the primary t
-//                 error, judged on its own, explains it: a shadow edge, set
-//                 aside, as are feelers the oracle cannot decide);
+//                 error, judged on its own, explains it) and from the exact
+//                 point moved by the mode's origin footprint either way along
+//                 the normal (else the offset, which every secondary ray
+//                 starts at by design, does): else a shadow edge, set aside,
+//                 as are feelers the oracle cannot decide;
 //   exit errors   the ray refracted into the hit surface (Snell's law with the
 //                 object's speedOfLight, entering from air) met the entry
 //                 surface again (t short of half the exact exit's), met
@@ -23,6 +26,7 @@
 
 #include "image/stress_sample.h"
 #include "numerics/oracle.h"
+#include "numerics/precision.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
@@ -41,10 +45,19 @@ struct SecondaryStats {
     std::vector<std::size_t> failedPixels;  // with acne, a shadow flip or an exit error, ascending
 };
 
+// How far a mode's secondary rays start from the surface, at most (twice
+// its offset, shaders/precision.glsl): `relative` times the larger of the
+// point's largest coordinate in the eye's frame and the object's generic
+// scale along the normal (oracle.h genericScaleAlong), plus `absolute`.
+struct OriginFootprint {
+    double relative = 0, absolute = 0;
+};
+OriginFootprint originFootprintOf(Precision precision);
+
 // `a`: the mode's arithmetic, whose set-aside (oracle.h) is left out.
 SecondaryStats checkSecondaryRays(const Scene& scene, const CameraBasis& camera,
                                   const std::vector<OraclePixel>& oracle,
                                   const std::vector<StressSample>& samples, Arithmetic a,
-                                  int threads);
+                                  const OriginFootprint& footprint, int threads);
 
 }  // namespace vkray::numerics

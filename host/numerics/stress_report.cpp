@@ -55,7 +55,7 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
         "output): acne: pixels whose shadow feelers met the object they left where the exact "
         "feeler from the exact point does not; of: pixels with a feeler compared; shadow "
         "flips: feelers whose verdict differs from the exact one, shadow edges: those the "
-        "primary hit's own error explains (set aside); exit errors: refracted rays that met "
+        "primary hit's own error or the secondary rays' offset explains (set aside); exit errors: refracted rays that met "
         "their entry surface again or left off the exact exit point, of refracted. The double "
         "CPU reference's secondary rays are not recorded. oracle bound: the largest certified "
         "bound of the oracle's own t, relative. time: the fastest of three GPU renders, or the "

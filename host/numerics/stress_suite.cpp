@@ -288,7 +288,8 @@ std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Contex
         const Arithmetic a = arithmeticOf(precisionName(precision));
         m = compareWithOracle(oracle, samples, a);
         const SecondaryStats secondary =
-            checkSecondaryRays(scene, camera, oracle, samples, a, options.threads);
+            checkSecondaryRays(scene, camera, oracle, samples, a, originFootprintOf(precision),
+                               options.threads);
         m.feelers = secondary.feelerPixels;
         m.acne = secondary.acne;
         m.shadowFlips = secondary.shadowFlips;

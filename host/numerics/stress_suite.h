@@ -82,12 +82,11 @@ struct ModeMetrics {
 // fp64 and the CPU reference), the conditions of oracle.h, and the world
 // terms only for the CPU reference, which works in the world's coordinates
 // as written (naive does too, but in float: it is held to robust's bound,
-// not forgiven its choice). The multiple
-// stands for the roundings a renderer makes on the way, beyond the few per
-// quantity the conditions count: 8, which the worst pixel of any robust,
-// fp64 or double row leaves at least 4 times over (docs/numerics.md), and
-// which a t off by a thousand ulps exceeds wherever a pixel's condition is
-// below 125.
+// not forgiven its choice). The multiple stands for the roundings a
+// renderer makes on the way, beyond the few per quantity the conditions
+// count: 8, which the worst pixel of any robust, fp64 or double row leaves
+// at least 4 times over (docs/numerics.md), and which a t off by a
+// thousand ulps exceeds wherever a pixel's condition is below 125.
 inline constexpr double kTAllowanceMultiple = 8;
 inline constexpr double kNormalAllowanceMultiple = 8;
 bool withinBounds(const ModeMetrics& metrics);

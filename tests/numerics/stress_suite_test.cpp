@@ -107,7 +107,10 @@ struct CaseRun {
     }
     ModeMetrics metrics(const std::vector<StressSample>& samples, Arithmetic a) const {
         ModeMetrics m = compareWithOracle(oracle, samples, a);
-        const SecondaryStats s = checkSecondaryRays(scene, camera, oracle, samples, a, 2);
+        // Robust's origin footprint for float, fp64's for double (the CPU
+        // reference records no secondary rays).
+        const OriginFootprint footprint = originFootprintOf(a == kFloat ? Precision::Robust : Precision::Fp64);
+        const SecondaryStats s = checkSecondaryRays(scene, camera, oracle, samples, a, footprint, 2);
         m.feelers = s.feelerPixels;
         m.acne = s.acne;
         m.shadowFlips = s.shadowFlips;
