@@ -16,6 +16,8 @@ namespace vkray {
 
 namespace {
 
+using glm::dvec3;
+
 // splitmix64: a fixed sequence on every platform (std's distributions are not).
 // The seed is mixed before it starts the sequence: splitmix64 steps its state
 // by a constant, so seeds a constant apart would start the same sequence a
@@ -30,6 +32,14 @@ public:
     bool chance(double p) { return unit() < p; }
     // A magnitude spread evenly in log between lo and hi.
     double logRange(double lo, double hi) { return lo * std::pow(hi / lo, unit()); }
+    // A point in the box lo..hi, its coordinates drawn in order. (Draws are
+    // never two arguments of one call, nor two operands of one +: their
+    // order would be the compiler's, and the scene of a seed with it.)
+    dvec3 vec(dvec3 lo, dvec3 hi) {
+        const double x = range(lo.x, hi.x), y = range(lo.y, hi.y);
+        return {x, y, range(lo.z, hi.z)};
+    }
+    dvec3 vec(double lo, double hi) { return vec(dvec3(lo), dvec3(hi)); }
 
 private:
     static std::uint64_t mix(std::uint64_t z) {
@@ -39,8 +49,6 @@ private:
     }
     std::uint64_t state_;
 };
-
-using glm::dvec3;
 
 // Six significant digits, or every digit where a place matters to far less
 // than 1e-6 of its size (the near view's huge object and eye).
@@ -102,7 +110,7 @@ struct Placed {
     bool secondRotation = false;
     Rotation second;
     int squashAxis = -1;  // the axis squashed (-1: none)
-    bool precise = false;
+    bool precise = false;  // written with every digit (the near view's huge object)
     bool plane = false, boolean = false;
     double transparency = 0;
     std::string body;      // the shape word(s), or the boolean's lines
@@ -122,7 +130,8 @@ struct Placed {
         return true;
     }
     double largestScale() const { return std::max(scale.x, std::max(scale.y, scale.z)); }
-    double squash() const { return std::min(scale.x, std::min(scale.y, scale.z)) / largestScale(); }
+    double smallestScale() const { return std::min(scale.x, std::min(scale.y, scale.z)); }
+    double squash() const { return smallestScale() / largestScale(); }
     // |M^-1 eye| (the second rotation, orthogonal, changes no length).
     double genericEye(dvec3 eye) const { return glm::length(unrotate(rotation, eye - at) / scale); }
     // The eye's distance in object sizes (a boolean's second primitive's);
@@ -145,8 +154,7 @@ struct Placed {
     bool refracts() const { return transparency > 0.5; }  // Hill's minTransparency
     bool thin() const { return refracts() && !plane && body != "square"; }
     double thinPerDistance(dvec3 eye) const {
-        const double thinnest = std::min(scale.x, std::min(scale.y, scale.z)) / stretch();
-        return thinnest / (glm::length(eye - at) + largestScale());
+        return smallestScale() / stretch() / (glm::length(eye - at) + largestScale());
     }
     double stretch() const { return boolean ? kBooleanChildStretch : 1; }
 
@@ -173,13 +181,15 @@ public:
     // A material: every word now and then, secondary rays above Hill's
     // thresholds (minReflectivity and minTransparency 0.5) or well below.
     void material(Placed& p, bool textured) {
-        std::string m = "ambient " + triple(d_.range(0, .3), d_.range(0, .3), d_.range(0, .3)) +
-                        " diffuse " + triple(d_.range(.1, .9), d_.range(.1, .9), d_.range(.1, .9));
-        m += d_.chance(.5) ? " specular " + triple(d_.range(0, .8), d_.range(0, .8), d_.range(0, .8)) +
-                                 " specularExponent " + num(d_.logRange(1, 200))
-                           : " specular 0 0 0";
-        m += d_.chance(.15) ? " emissive " + triple(d_.range(0, .4), d_.range(0, .4), d_.range(0, .4))
-                            : " emissive 0 0 0";
+        std::string m = "ambient " + triple(d_.vec(0, .3));
+        m += " diffuse " + triple(d_.vec(.1, .9));
+        if (d_.chance(.5)) {
+            m += " specular " + triple(d_.vec(0, .8));
+            m += " specularExponent " + num(d_.logRange(1, 200));
+        } else {
+            m += " specular 0 0 0";
+        }
+        m += d_.chance(.15) ? " emissive " + triple(d_.vec(0, .4)) : " emissive 0 0 0";
         m += " reflectivity " + num(d_.chance(.3) ? d_.range(.6, .95) : d_.range(0, .3));
         p.transparency = written(d_.chance(.25) ? d_.range(.6, .95) : d_.range(0, .3));
         p.material = m;
@@ -188,7 +198,7 @@ public:
             // Checkerboard (1) or wood (2): size or ring width, then the odd colour.
             p.texture = d_.chance(.5) ? 1 : 2;
             p.cell = written(d_.logRange(.25, 2));
-            p.odd = written(dvec3(d_.unit(), d_.unit(), d_.unit()));
+            p.odd = written(d_.vec(0, 1));
         }
     }
 
@@ -285,14 +295,19 @@ double toward(Draw& d, double least, double most) {
 // or torus seen from close above; a mirror floor scaled by 1e7 with a ball.
 void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
     r.lone = true;
-    const auto colour = [&](double lo, double hi) { return triple(d.range(lo, hi), d.range(lo, hi), d.range(lo, hi)); };
-    std::string material = "ambient " + colour(0, .3) + " diffuse " + colour(.2, .9) +
-                           (d.chance(.5) ? " specular " + colour(0, .8) + " specularExponent " +
-                                               num(d.logRange(1, 200))
-                                         : std::string(" specular 0 0 0")) +
-                           " reflectivity 0 transparency 0";
-    const std::string head = "background " + colour(0, 1) + "\nglobalAmbient " + colour(0, .4) + "\n";
-    const dvec3 direction = glm::normalize(dvec3(d.range(-1, 1), d.range(-1, 1), d.range(-1, 1)) + dvec3(0, 0, 1e-3));
+    const auto colour = [&](double lo, double hi) { return triple(d.vec(lo, hi)); };
+    std::string material = "ambient " + colour(0, .3);
+    material += " diffuse " + colour(.2, .9);
+    if (d.chance(.5)) {
+        material += " specular " + colour(0, .8);
+        material += " specularExponent " + num(d.logRange(1, 200));
+    } else {
+        material += " specular 0 0 0";
+    }
+    material += " reflectivity 0 transparency 0";
+    std::string head = "background " + colour(0, 1);
+    head += "\nglobalAmbient " + colour(0, .4) + "\n";
+    const dvec3 direction = glm::normalize(d.vec(-1, 1) + dvec3(0, 0, 1e-3));
     const int kind = d.below(7);
     dvec3 eye, look(0.0), light;
     double fov = 40;
@@ -309,11 +324,11 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
         // Looking a little beside the centre: looking at it, the image is
         // symmetric and pixels on the silhouette come in eights at the same
         // distance from its middle, so one rounding is drawn eight times.
-        look = written(dvec3(d.range(-.3, .3), d.range(-.3, .3), d.range(-.3, .3)));
+        look = written(d.vec(-.3, .3));
         r.reach.eye = glm::length(eye);
         r.reach.worldEye = r.reach.eye;
         fov = written(glm::degrees(2 * std::asin(1 / r.reach.eye)) * d.range(1.05, 1.5));
-        light = eye + distance * dvec3(d.range(-1, 1), d.range(1, 4), d.range(-1, 1));
+        light = eye + distance * d.vec({-1, 1, -1}, {1, 4, 1});
         if (checkered) {
             material += " texture 1 parameters 4 " + num(cell) + " " + colour(0, 1);
             r.reach.perCell = r.reach.eye / cell;
@@ -336,10 +351,10 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
         const Rotation rotation{written(d.range(-180, 180)), written(direction)};
         const std::string rotate = "rotate " + num(rotation.degrees) + " " + triple(rotation.axis);
         const std::string squash = "scale " + triple(scale);
-        eye = written(glm::normalize(dvec3(d.range(-1, 1), d.range(-1, 1), d.range(-1, 1)) + dvec3(0, 0, 1e-3)) *
-                      d.range(4, 7));
+        const dvec3 from = glm::normalize(d.vec(-1, 1) + dvec3(0, 0, 1e-3));
+        eye = written(from * d.range(4, 7));
         light = eye * 1.5 + dvec3(0, 4, 0);
-        look = written(dvec3(d.range(-.3, .3), d.range(-.3, .3), d.range(-.3, .3)));
+        look = written(d.vec(-.3, .3));
         objects = material + " texture 0\npush " + (after ? squash + " " + rotate : rotate + " " + squash) +
                   " " + shapes[shape] + " pop\n";
         // M^-1 eye: S^-1 R^T eye after the rotation, R^T S^-1 eye before it.
@@ -360,9 +375,13 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
         const double height = radius / ratio;
         precise = true;
         if (shape == 0) {
-            eye = dvec3(0, radius + height, 0);
+            // Not straight over the top: looking level from there, the view
+            // would be symmetric about its middle column, each horizon pixel
+            // twice.
+            const dvec3 tilt = d.vec({-.05, 1, -.05}, {.05, 1, .05});
+            eye = (radius + height) * glm::normalize(tilt);
             objects = material + " texture 0\npush scale " + triple(dvec3(radius), true) + " sphere pop\n";
-            r.genericEye.push_back(eye.y / radius);
+            r.genericEye.push_back((radius + height) / radius);
         } else if (shape == 1) {
             // The wall x^2 + y^2 = R^2 of a long cylinder along z.
             eye = dvec3(0, radius + height, 0);
@@ -378,8 +397,8 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
             r.genericEye.push_back((eye.y + 4 * radius) / (4 * radius));
         }
         eye = written(eye, true);
-        look = eye + dvec3(d.range(-3, 3), -d.range(0, .2), d.range(-3, 3));
-        light = eye + dvec3(d.range(-100, 100), d.range(50, 200), d.range(-100, 100));
+        look = eye + d.vec({-3, -.2, -3}, {3, 0, 3});
+        light = eye + d.vec({-100, 50, -100}, {100, 200, 100});
         fov = written(d.range(30, 70));
         r.reach.nearRatio = ratio;
         r.reach.worldEye = glm::length(eye);
@@ -388,10 +407,11 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
         // ball on it.
         const double height = written(d.logRange(.1, 1));
         eye = dvec3(0, height, 0);
-        look = dvec3(d.range(1, 4), 0, d.range(1, 4));
-        light = dvec3(d.range(-4, 4), d.range(3, 8), d.range(-4, 4));
+        look = d.vec({1, 0, 1}, {4, 0, 4});
+        light = d.vec({-4, 3, -4}, {4, 8, 4});
         const dvec3 ball = written(look + dvec3(0, .4, 0));
-        objects = "diffuse " + colour(.2, .9) + " reflectivity " + num(d.range(.6, .95)) +
+        objects = "diffuse " + colour(.2, .9);
+        objects += " reflectivity " + num(d.range(.6, .95)) +
                   "\npush rotate -90 1 0 0 scale 1e7 1e7 1e7 plane pop\n" + material +
                   " texture 0\npush translate " + triple(ball) + " scale 0.4 0.4 0.4 sphere pop\n";
         r.genericEye.push_back(height / 1e7);
@@ -446,8 +466,8 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
     SceneWriter w(d, env);
 
     std::string head;
-    head += "background " + triple(d.unit(), d.unit(), d.unit()) + "\n";
-    head += "globalAmbient " + triple(d.range(0, .4), d.range(0, .4), d.range(0, .4)) + "\n";
+    head += "background " + triple(d.vec(0, 1)) + "\n";
+    head += "globalAmbient " + triple(d.vec(0, .4)) + "\n";
     const int depth = d.chance(.2) ? d.below(12) : d.below(5);
     head += "maxRecursionDepth " + std::to_string(depth) + "\n";
 
@@ -463,7 +483,7 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
     std::vector<Placed> objects;
     std::vector<dvec3> centres;  // of centred solids that are not squashed
     for (int i = 0; i < count; ++i) {
-        const dvec3 at(d.range(-extent, extent), d.range(-extent, extent), d.range(-extent, extent));
+        const dvec3 at = d.vec(-extent, extent);
         const double size = extent * d.logRange(.05, .5);
         Placed p;
         w.material(p, d.chance(.2));
@@ -478,10 +498,11 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
                                     "taperedCylinder 0.5"};
             w.placement(p, at, size);
             p.boolean = true;
-            p.body = std::string(ops[d.below(3)]) + "\n  " + solids[d.below(6)] + "\n";
-            p.body += "  push translate " + triple(d.range(-.8, .8), d.range(-.8, .8), d.range(-.8, .8)) +
-                      " scale " + triple(d.range(.4, 1), d.range(.4, 1), d.range(.4, 1)) + " " +
-                      solids[d.below(6)] + " pop\n";
+            p.body = ops[d.below(3)];
+            p.body += std::string("\n  ") + solids[d.below(6)] + "\n";
+            p.body += "  push translate " + triple(d.vec(-.8, .8));
+            p.body += " scale " + triple(d.vec(.4, 1));
+            p.body += std::string(" ") + solids[d.below(6)] + " pop\n";
         } else {
             w.placement(p, at, size);
             p.body = w.primitive(true);
@@ -501,9 +522,10 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
     // Lights: one to four, around and above.
     std::string lightLines;
     const int lights = 1 + d.below(4);
-    for (int i = 0; i < lights; ++i)
-        lightLines += "light " + triple(d.range(-3, 3) * extent, d.range(0, 4) * extent, d.range(-3, 3) * extent) +
-                      " " + triple(d.range(.2, 1), d.range(.2, 1), d.range(.2, 1)) + "\n";
+    for (int i = 0; i < lights; ++i) {
+        lightLines += "light " + triple(d.vec({-3, 0, -3}, {3, 4, 3}) * extent);
+        lightLines += " " + triple(d.vec(.2, 1)) + "\n";
+    }
 
     // The camera.
     dvec3 eye(0.0), look(0.0);
@@ -522,7 +544,7 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
         Placed huge;
         w.material(huge, d.chance(.2));
         huge.precise = true;
-        const dvec3 foot(d.range(-.5, .5) * extent, 0, d.range(-.5, .5) * extent);
+        const dvec3 foot = d.vec({-.5, 0, -.5}, {.5, 0, .5}) * extent;
         if (sphere) {
             huge.at = written(dvec3(0, -extent - radius, 0), true);
             huge.scale = dvec3(radius);
@@ -539,7 +561,7 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
         }
         r.reach.nearRatio = ratio;
         objects.insert(objects.begin(), huge);
-        look = dvec3(d.range(-1, 1) * extent, d.range(-.5, .5) * extent, d.range(-1, 1) * extent);
+        look = d.vec({-1, -.5, -1}, {1, .5, 1}) * extent;
         precise = true;
         // The eye is inside none of the others (within twice its size of its centre).
         std::erase_if(objects, [&](const Placed& p) {
@@ -548,13 +570,13 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
         });
     } else if (view < 6) {
         const double r0 = extent * d.range(2.5, 6);
-        eye = dvec3(d.range(-1, 1) * r0, d.range(.2, 1) * r0, d.range(-1, 1) * r0);
+        eye = d.vec({-1, .2, -1}, {1, 1, 1}) * r0;
         if (std::abs(eye.x) + std::abs(eye.z) < 1e-3) eye.x = r0;
     } else if (view < 8) {
         // Far away, up to the envelope's distance, the view narrowed to the
         // scene (or a little more, or less): float's error grows with the
         // distance in object sizes, and shows where an object spans pixels.
-        const dvec3 direction = glm::normalize(dvec3(d.range(-1, 1), d.range(.1, 1), 1));
+        const dvec3 direction = glm::normalize(d.vec({-1, .1, 1}, {1, 1, 1}));
         const double reach = d.chance(.3) ? d.range(.5, 1) : d.logRange(1e-4, 1);
         const double distance = farDistance(objects, direction, extent, reach, env, 6 * extent);
         eye = direction * distance;
@@ -566,7 +588,7 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
         // walls may lie closer to the eye than robust's offset can tell apart
         // (docs/numerics.md, "Envelope").
         eye = centres[size_t(d.below(int(centres.size())))];
-        look = eye + dvec3(d.range(-1, 1), d.range(-1, 1), d.range(-1, 1));
+        look = eye + d.vec(-1, 1);
     }
     eye = written(eye, precise);
     fov = written(fov);

@@ -45,33 +45,28 @@ double processCpuSeconds() {
     return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
-vk::DescriptorType descriptorType(BindingKind kind) {
+// How a binding of each kind is made: its descriptor, its buffer's usage
+// and, for a texel buffer, the view's format and the bytes of one texel.
+struct BindingUse {
+    vk::DescriptorType descriptor;
+    vk::BufferUsageFlags usage;
+    vk::Format format = vk::Format::eUndefined;
+    std::size_t texelBytes = 0;  // 0: not a texel buffer
+};
+
+BindingUse useOf(BindingKind kind) {
+    using Usage = vk::BufferUsageFlagBits;
     switch (kind) {
-    case BindingKind::Uniform: return vk::DescriptorType::eUniformBuffer;
-    case BindingKind::Storage: return vk::DescriptorType::eStorageBuffer;
+    case BindingKind::Uniform: return {vk::DescriptorType::eUniformBuffer, Usage::eUniformBuffer};
+    case BindingKind::Storage: return {vk::DescriptorType::eStorageBuffer, Usage::eStorageBuffer};
     case BindingKind::Texels:
-    case BindingKind::UintTexels: return vk::DescriptorType::eStorageTexelBuffer;
+        return {vk::DescriptorType::eStorageTexelBuffer, Usage::eStorageTexelBuffer,
+                vk::Format::eR32G32B32A32Uint, 16};
+    case BindingKind::UintTexels:
+        return {vk::DescriptorType::eStorageTexelBuffer, Usage::eStorageTexelBuffer,
+                vk::Format::eR32Uint, 4};
     }
     throw Error("internal: a binding of no known kind");
-}
-
-vk::BufferUsageFlags bufferUsage(BindingKind kind) {
-    switch (kind) {
-    case BindingKind::Uniform: return vk::BufferUsageFlagBits::eUniformBuffer;
-    case BindingKind::Storage: return vk::BufferUsageFlagBits::eStorageBuffer;
-    case BindingKind::Texels:
-    case BindingKind::UintTexels: return vk::BufferUsageFlagBits::eStorageTexelBuffer;
-    }
-    throw Error("internal: a binding of no known kind");
-}
-
-// The texel format of a texel-buffer binding: a uvec4 or a uint a texel.
-vk::Format texelFormat(BindingKind kind) {
-    return kind == BindingKind::UintTexels ? vk::Format::eR32Uint : vk::Format::eR32G32B32A32Uint;
-}
-
-std::size_t texelBytes(BindingKind kind) {
-    return kind == BindingKind::UintTexels ? 4 : kind == BindingKind::Texels ? 16 : 0;
 }
 
 template <typename T>
@@ -85,26 +80,28 @@ std::unique_ptr<HostBuffer> makeBuffer(Context::Impl& c, const std::vector<T>& i
     return buffer;
 }
 
-// A scene array read through a texel buffer (rgba32ui, or r32ui for uint items).
-template <typename T>
-BufferNeed need(const char* what, const std::vector<T>& items, const char* advice) {
-    return {what, items.size(), sizeof(T), false, advice, sizeof(T) % 16 == 0 ? 16u : 4u};
-}
-
 // Every buffer TracePass allocates for this variant, before it allocates any.
 std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures& features,
                                     bool doubles, size_t tilePixels, size_t tileRays,
                                     size_t pendingRays, size_t debugEntries) {
+    std::map<uint, BindingKind> kinds;
+    for (const ShaderBinding& b : bindingsFor(features)) kinds[b.binding] = b.kind;
+    // A scene array: a texel buffer, its texels those of its binding's kind.
+    const auto need = [&](uint binding, const char* what, const auto& items, const char* advice) {
+        return BufferNeed{what, items.size(), sizeof(items[0]), false, advice,
+                          useOf(kinds.at(binding)).texelBytes};
+    };
     const char* fewerObjects = "Use fewer objects";
     const char* smallerMeshes = "Use fewer or smaller meshes";
     std::vector<BufferNeed> needs{
         {"frame parameters", 1, sizeof(FrameParams), true, "Use another --device"},
-        need("objects", packed.objects, fewerObjects),
-        need("materials", packed.materials, fewerObjects),
-        need("lights", packed.lights, "Use fewer lights"),
+        need(BINDING_OBJECTS, "objects", packed.objects, fewerObjects),
+        need(BINDING_MATERIALS, "materials", packed.materials, fewerObjects),
         {"tile pixels", tilePixels, sizeof(GpuPixel), false, "Use a smaller --block"},
         {"ray progress", tileRays, sizeof(GpuRayProgress), false, "Use a smaller --block"},
     };
+    if (kinds.count(BINDING_LIGHTS))
+        needs.push_back(need(BINDING_LIGHTS, "lights", packed.lights, "Use fewer lights"));
     if (pendingRays > 0)
         needs.push_back({"pending rays", pendingRays,
                          doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask), false,
@@ -112,17 +109,17 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     if (features.debugPixel)
         needs.push_back({"debug entries", debugEntries, sizeof(GpuDebugEntry), false, fewerObjects});
     if (features.objectBvh) {
-        needs.push_back(need("object BVH nodes", packed.objectNodes, fewerObjects));
-        needs.push_back(need("object BVH entries", packed.objectIndex, fewerObjects));
+        needs.push_back(need(BINDING_OBJECT_NODES, "object BVH nodes", packed.objectNodes, fewerObjects));
+        needs.push_back(need(BINDING_OBJECT_INDEX, "object BVH entries", packed.objectIndex, fewerObjects));
     }
     if (features.kinds[KIND_MESH]) {
-        needs.push_back(need("meshes", packed.meshes, smallerMeshes));
-        needs.push_back(need("mesh BVH nodes", packed.meshNodes, smallerMeshes));
-        needs.push_back(need("triangles", packed.triangles, smallerMeshes));
+        needs.push_back(need(BINDING_MESHES, "meshes", packed.meshes, smallerMeshes));
+        needs.push_back(need(BINDING_MESH_NODES, "mesh BVH nodes", packed.meshNodes, smallerMeshes));
+        needs.push_back(need(BINDING_TRIANGLES, "triangles", packed.triangles, smallerMeshes));
     }
     if (features.kinds[KIND_BOOLEAN])
-        needs.push_back(need("CSG nodes", packed.csgNodes, "Use fewer or simpler booleans"));
-    if (doubles) needs.push_back(need("double transforms", packed.doubleObjects, fewerObjects));
+        needs.push_back(need(BINDING_CSG_NODES, "CSG nodes", packed.csgNodes, "Use fewer or simpler booleans"));
+    if (doubles) needs.push_back(need(BINDING_DOUBLE_OBJECTS, "double transforms", packed.doubleObjects, fewerObjects));
     if (features.stressOutput)
         needs.push_back({"stress output", tilePixels, sizeof(GpuStressSample), false, "Use a smaller image"});
     return needs;
@@ -199,7 +196,7 @@ public:
             throw Error("internal: the buffers uploaded differ from the variant's bindings");
 
         std::map<vk::DescriptorType, uint> descriptorCounts;
-        for (const ShaderBinding& b : bindings) ++descriptorCounts[descriptorType(b.kind)];
+        for (const ShaderBinding& b : bindings) ++descriptorCounts[useOf(b.kind).descriptor];
         std::vector<vk::DescriptorPoolSize> poolSizes;
         for (const auto& [type, count] : descriptorCounts) poolSizes.emplace_back(type, count);
         pool_ = vk::raii::DescriptorPool(
@@ -210,13 +207,11 @@ public:
         views_.reserve(buffers_.size());
         std::vector<vk::WriteDescriptorSet> writes;
         for (const auto& [binding, buffer] : buffers_) {
-            const BindingKind kind = kinds_.at(binding);
-            vk::WriteDescriptorSet& write =
-                writes.emplace_back(*set_, binding, 0, 1, descriptorType(kind));
-            if (texelBytes(kind) > 0) {
+            const BindingUse use = useOf(kindOf(binding));
+            vk::WriteDescriptorSet& write = writes.emplace_back(*set_, binding, 0, 1, use.descriptor);
+            if (use.texelBytes > 0) {
                 views_.emplace_back(c.device, vk::BufferViewCreateInfo({}, buffer->buffer(),
-                                                                       texelFormat(kind), 0,
-                                                                       VK_WHOLE_SIZE));
+                                                                       use.format, 0, VK_WHOLE_SIZE));
                 write.setPTexelBufferView(&*views_.back());  // reserved: the views stay put
             } else {
                 write.setPBufferInfo(&infos.emplace_back(buffer->buffer(), 0, VK_WHOLE_SIZE));
@@ -319,12 +314,18 @@ private:
     // The buffer of `binding`, made for the way the variant reads it, holding `items`.
     template <typename T>
     void add(uint binding, const std::vector<T>& items) {
-        buffers_.emplace(binding, makeBuffer(c_, items, bufferUsage(kinds_.at(binding))));
+        buffers_.emplace(binding, makeBuffer(c_, items, useOf(kindOf(binding)).usage));
+    }
+    BindingKind kindOf(uint binding) const {
+        const auto found = kinds_.find(binding);
+        if (found == kinds_.end())
+            throw Error("internal: binding " + std::to_string(binding) + " is not the variant's");
+        return found->second;
     }
     // The same, `bytes` left as they are: the shader writes before it reads.
     void allocate(uint binding, size_t bytes) {
         buffers_.emplace(binding,
-                         std::make_unique<HostBuffer>(c_, bytes, bufferUsage(kinds_.at(binding))));
+                         std::make_unique<HostBuffer>(c_, bytes, useOf(kindOf(binding)).usage));
     }
     HostBuffer& buffer(uint binding) const { return *buffers_.at(binding); }
 
@@ -434,7 +435,7 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     const auto bind = [&](uint binding, vk::DescriptorType type) {
         bindings.emplace_back(binding, type, 1, vk::ShaderStageFlagBits::eCompute);
     };
-    for (const ShaderBinding& b : bindingsFor(features)) bind(b.binding, descriptorType(b.kind));
+    for (const ShaderBinding& b : bindingsFor(features)) bind(b.binding, useOf(b.kind).descriptor);
     p->setLayout = vk::raii::DescriptorSetLayout(c.device, {{}, bindings});
     const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0, sizeof(TileParams));
     p->layout = vk::raii::PipelineLayout(c.device, {{}, *p->setLayout, pushRange});
