@@ -13,6 +13,7 @@ packages=(
   libgtest-dev
   clang libclang-rt-dev  # scripts/fuzz.sh: clang and its libFuzzer/sanitizer runtimes
   libopenmpi-dev openmpi-bin  # rendering across MPI ranks (docs/mpi.md)
+  libboost-dev  # Boost.Multiprecision: the stress oracle's 113-bit float128 (host/numerics/oracle.*)
   dpkg-dev file  # cpack -G DEB: dpkg-shlibdeps finds the .deb's library dependencies
   libglfw3-dev  # vkray view: the window and its Vulkan surface
   xvfb xauth libx11-dev  # vkray view's tests: a virtual X server, and Xlib to look into it

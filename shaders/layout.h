@@ -61,6 +61,7 @@ VKRAY_CONST(uint, BINDING_PROGRESS, 15u);  // buffer GpuRayProgress[]: each ray'
 VKRAY_CONST(uint, BINDING_STATUS, 16u);    // buffer GpuDispatchStatus: what one dispatch left undone
 VKRAY_CONST(uint, BINDING_RAY_STACK, 17u); // reflection/refraction variants: buffer GpuRayTask[] (or double)
 VKRAY_CONST(uint, BINDING_MATERIALS, 18u); // texels: GpuMaterial[] (read once a hit)
+VKRAY_CONST(uint, BINDING_STRESS_OUTPUT, 19u);  // stress-output variant: buffer GpuStressSample[] (one tile)
 
 // The texels (uvec4) of each structure read through a texel buffer
 // (host/gpu/layout_check.cpp checks each against its size).
@@ -79,18 +80,16 @@ VKRAY_CONST(uint, MAX_RECURSION_DEPTH, 64u);  // maxRecursionDepth (kMaxRecursio
 VKRAY_CONST(uint, MEDIUM_STACK_SIZE, 4u);    // nested transparent objects a ray remembers
 
 // A secondary ray's origin moves off the surface (along the normal) by
-// OFFSET_SCALE times its largest coordinate, or by OFFSET_NEAR_ORIGIN_STEP
-// when every coordinate is within OFFSET_NEAR_ORIGIN of 0 (float modes;
-// shaders/precision.glsl offsetOrigin, replayed by host/numerics/feelers.cpp).
-// After Ray Tracing Gems ch. 6 (Waechter and Binder), whose 256 float
-// spacings of each coordinate are sized for world coordinates; vkray works in
-// the eye's frame, where a hit point and the re-intersection of a ray leaving
-// it are off by a few spacings of the largest coordinate in any direction:
-// 2^-18 of it (32 to 64 of its spacings) along the normal, whatever its
-// direction (docs/numerics.md).
+// OFFSET_SCALE times its largest coordinate (float modes; shaders/precision.glsl
+// offsetOrigin). After Ray Tracing Gems ch. 6 (Waechter and Binder), whose
+// 256 float spacings of each coordinate are sized for world coordinates;
+// vkray works in the eye's frame, where a hit point and the re-intersection
+// of a ray leaving it are off by a few spacings of the largest coordinate in
+// any direction: 2^-18 of it (32 to 64 of its spacings) along the normal,
+// whatever its direction (docs/numerics.md). Ray Tracing Gems' constant step
+// near the origin (1/65536 within 1/32) is left out: there the origin is the
+// eye, and the step let light through objects smaller than it.
 VKRAY_CONST(float, OFFSET_SCALE, 1.0 / 262144.0);
-VKRAY_CONST(float, OFFSET_NEAR_ORIGIN, 1.0 / 32.0);
-VKRAY_CONST(float, OFFSET_NEAR_ORIGIN_STEP, 1.0 / 65536.0);
 // ... and by at least OFFSET_GENERIC_SCALE (2^-18 = 64 u, u = 2^-24) times
 // the world size of the object's generic rounding unit along the normal (the
 // world length of one generic unit along it times the generic shape's
@@ -271,6 +270,28 @@ struct GpuRayTask {
 struct GpuPixel {
     vec4 color;   // rgb radiance (unclamped); w = depth (distance along the unit ray, +inf on a miss)
     vec4 normal;  // xyz world unit normal facing the ray; w = object id (int bits; -1 = background)
+};
+
+// The stress-output variant (VKRAY_STRESS_OUTPUT; `vkray stress`, `vkray
+// pixel`): what the mode's own shader found for each pixel's first primary
+// ray (sample 0) and the secondary rays of its hit, one per pixel of the tile
+// (shaders/stress_output.glsl). Feelers are recorded for lights 0 to
+// STRESS_MAX_LIGHTS - 1, bit i for light i.
+VKRAY_CONST(uint, STRESS_MAX_LIGHTS, 32u);
+struct GpuStressSample {
+    vec4 primary;        // xyz: the world unit normal of the surface hit (its geometric
+                         // normal), facing the ray; w = t (float; +inf on a miss)
+    uvec4 hit;           // x = object id (int bits; -1: none); y = lights whose shadow
+                         // feeler was traced; z = those whose feeler met a surface;
+                         // w = those whose feeler met the object it left
+    uvec4 primaryDouble; // fp64 variant (else 0): xy = t, zw = normal.x, each a double's
+                         // 32-bit halves, least significant first (unpackDouble2x32)
+    uvec4 normalDouble;  // fp64 variant (else 0): xy = normal.y, zw = normal.z
+    vec4 refracted;      // the ray refracted into the primary hit's surface: xyz = the
+                         // point it met a surface at, relative to the eye; w = its t
+                         // (+inf: it met none)
+    uvec4 refractedHit;  // x = its object id (int bits; -1: none); y = 1 when it was
+                         // traced; zw unused
 };
 
 // `vkray pixel` (the VKRAY_DEBUG_PIXEL variant): what the shader saw for the

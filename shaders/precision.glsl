@@ -44,12 +44,15 @@ const float NAIVE_EPSILON = 1e-4;
 //           the surface by a distance `step` that grows with |p| like the
 //           rounding error of p and of the ray re-intersecting the surface:
 //           2^-18 of the largest coordinate, 32 to 64 of its float spacings
-//           (OFFSET_SCALE of layout.h), or a small constant near the origin;
-//           and at least OFFSET_GENERIC_SCALE (2^-18 = 64 u) times
-//           genericScale, which covers the rounding of the point in the
-//           object's own generic space (see below);
-//   fp64    the same in double (2^-47 of the largest coordinate, 2^-45 near
-//           the origin, 2^-47 = 64 u of double times genericScale).
+//           (OFFSET_SCALE of layout.h), and at least OFFSET_GENERIC_SCALE
+//           (2^-18 = 64 u) times genericScale, which covers the rounding of
+//           the point in the object's own generic space (see below). No
+//           constant near the origin (Ray Tracing Gems' 1/65536 within 1/32
+//           of it): the origin is the eye, where points are as exact as
+//           their size, and a constant there leaks light past objects
+//           smaller than it;
+//   fp64    the same in double (2^-47 of the largest coordinate, 2^-47 =
+//           64 u of double times genericScale).
 // The step off the surface (along n) is taken along the ray itself, as far as
 // OFFSET_MAX_FORWARD steps do it, the rest along n: moved along n alone, the
 // ray ran beside the exact one, `step` to the side, and every edge it passed
@@ -70,22 +73,22 @@ vec3 naiveOffsetRayOrigin(vec3 p, vec3 n) { return p + NAIVE_EPSILON * n; }
 
 #if VKRAY_PRECISION_FP64
 const double OFFSET_DOUBLE_SCALE = 1.0lf / 140737488355328.0lf;  // 2^-47 = 32 * 2^-52
-const double OFFSET_DOUBLE_NEAR_ORIGIN_STEP = 1.0lf / 35184372088832.0lf;  // 2^-45
 const double OFFSET_DOUBLE_GENERIC_SCALE = 1.0lf / 140737488355328.0lf;  // 2^-47 = 64 * 2^-53
 #endif
 
 rvec3 offsetOrigin(rvec3 p, vec3 n, vec3 side, vec3 along, real genericScale) {
+#if VKRAY_FAULT_NO_OFFSET
+    return p;  // a test hook (VKRAY_FAULT=no-offset): on the surface, to show the acne that follows
+#endif
     if (dot(n, side) < 0.0) n = -n;
 #if VKRAY_PRECISION_NAIVE
     return naiveOffsetRayOrigin(p, n);
 #else
     real largest = max(abs(p.x), max(abs(p.y), abs(p.z)));
 #if VKRAY_PRECISION_FP64
-    real step = max(OFFSET_DOUBLE_SCALE * largest, OFFSET_DOUBLE_NEAR_ORIGIN_STEP);
-    step = max(step, OFFSET_DOUBLE_GENERIC_SCALE * genericScale);
+    real step = max(OFFSET_DOUBLE_SCALE * largest, OFFSET_DOUBLE_GENERIC_SCALE * genericScale);
 #else
-    real step = largest < OFFSET_NEAR_ORIGIN ? OFFSET_NEAR_ORIGIN_STEP : OFFSET_SCALE * largest;
-    step = max(step, OFFSET_GENERIC_SCALE * genericScale);
+    real step = max(OFFSET_SCALE * largest, OFFSET_GENERIC_SCALE * genericScale);
 #endif
     vec3 a = normalize(along);
     float c = dot(n, a);  // how far one unit along the ray leaves the surface

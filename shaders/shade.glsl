@@ -306,6 +306,10 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
         Hit hit;
         float through;
         walkScene(walkOrigin, walkDirection, walkMax, feeler, hit, through);
+#if VKRAY_STRESS_OUTPUT
+        stressRecordWalk(firstPixel, sampleIndex, task.level, feeler, light, walkOrigin,
+                         walkDirection, hit);
+#endif
 
         bool record = task.level == 0u && sampleIndex == 0u;
         vec3 v = -vec3(task.direction);

@@ -10,7 +10,9 @@
 // of Whitted shading the scene uses;
 // VKRAY_OBJECT_BVH finds objects through a BVH instead of testing each;
 // VKRAY_DEBUG_PIXEL (for `vkray pixel`) also records every step of the one
-// ray the host dispatches into the debug buffer. VKRAY_PRECISION_NAIVE
+// ray the host dispatches into the debug buffer; VKRAY_STRESS_OUTPUT (for
+// `vkray stress` and `vkray pixel`) what each pixel's primary ray and its
+// secondary rays met (stress_output.glsl). VKRAY_PRECISION_NAIVE
 // selects the textbook float formulas (precision.glsl).
 #version 460
 #extension GL_GOOGLE_include_directive : require
@@ -166,6 +168,8 @@ bool intersectObject(uint index, rvec3 origin, rvec3 direction, real tMax, out r
     return hit;
 }
 
+#include "stress_output.glsl"
+
 // Surfaces that coincide (stacked cubes, a def used twice) are hit at the same
 // t up to rounding. Hits within this relative distance count as a tie, won by
 // the lower object index, as in the CPU reference, so the choice does not
@@ -194,7 +198,11 @@ void testObject(uint index, rvec3 origin, rvec3 direction, bool feeler, inout Hi
     rvec3 n, geometric;
     uint surface;
     real tMax = reach(hit.t, feeler);
-    if (!intersectObject(index, origin, direction, tMax, t, n, geometric, surface)) return;
+    bool met = intersectObject(index, origin, direction, tMax, t, n, geometric, surface);
+#if VKRAY_STRESS_OUTPUT
+    stressNoteTest(index, feeler, met);
+#endif
+    if (!met) return;
 #if VKRAY_SHADOWS
     if (feeler) {
         through *= uintBitsToFloat(objectShape(surface).w);

@@ -14,9 +14,23 @@ std::string format(const char* pattern, double a, double b = 0, double c = 0) {
     return text;
 }
 
-std::string show(double v) { return std::isinf(v) ? "miss" : format("%.9g", v); }
-std::string show(const glm::dvec3& v) { return format("(%.7g, %.7g, %.7g)", v.x, v.y, v.z); }
-std::string show(const std::optional<double>& t) { return t ? show(*t) : "miss"; }
+// A number with `digits` significant digits: 9 show a float exactly, 17 a double.
+std::string show(double v, int digits) {
+    if (std::isinf(v)) return "miss";
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*g", digits, v);
+    return text;
+}
+std::string show(const glm::dvec3& v, int digits) {
+    return "(" + show(v.x, digits) + ", " + show(v.y, digits) + ", " + show(v.z, digits) + ")";
+}
+std::string show(const std::optional<double>& t, int digits) { return t ? show(*t, digits) : "miss"; }
+
+std::string feelerText(const PixelTrace::LightTerms& terms) {
+    if (!terms.feelerMet) return "not traced";
+    if (!*terms.feelerMet) return "clear";
+    return terms.feelerMetLeft.value_or(false) ? "met the object it left" : "met a surface";
+}
 
 double difference(double a, double b) {
     if (std::isinf(a) && std::isinf(b)) return 0;
@@ -31,18 +45,20 @@ double difference(const std::optional<double>& a, const std::optional<double>& b
     return std::abs(*a - *b);
 }
 
-// One row: label, GPU value, CPU value, |GPU - CPU| (largest component).
+// One row: label, GPU value, CPU value, |GPU - CPU| (largest component),
+// each side with its own significant digits.
 class Table {
 public:
     template <typename T>
-    void row(const std::string& label, const T& gpu, const T& cpu) {
+    void row(const std::string& label, const T& gpu, int gpuDigits, const T& cpu, int cpuDigits) {
         const double d = difference(gpu, cpu);
-        line(label, show(gpu), show(cpu), std::isinf(d) ? "DIFFERENT" : format("%.2g", d));
+        line(label, show(gpu, gpuDigits), show(cpu, cpuDigits),
+             std::isinf(d) ? "DIFFERENT" : format("%.2g", d));
     }
     void line(const std::string& label, const std::string& gpu, const std::string& cpu,
               const std::string& diff) {
         char text[512];
-        std::snprintf(text, sizeof text, "%-22s %-40s %-40s %s\n", label.c_str(), gpu.c_str(),
+        std::snprintf(text, sizeof text, "%-22s %-50s %-50s %s\n", label.c_str(), gpu.c_str(),
                       cpu.c_str(), diff.c_str());
         text_ += text;
     }
@@ -64,36 +80,41 @@ std::string formatPixelReport(const Scene& scene, const RenderSettings& settings
     table.text_ = "pixel (" + std::to_string(gpu.x) + ", " + std::to_string(gpu.y) + ") of " +
                   std::to_string(settings.width) + "x" + std::to_string(settings.height) +
                   (settings.block > 1 ? ", block " + std::to_string(settings.block) : "") + "\n";
-    table.line("", "GPU (as float)", "CPU reference (double)", "|GPU - CPU|");
-    table.row("ray origin", gpu.rayOrigin, cpu.rayOrigin);
-    table.row("ray direction", gpu.rayDirection, cpu.rayDirection);
+    table.line("", gpu.geometryDigits == 17 ? "GPU (t and normal in double)" : "GPU (float)",
+               "CPU reference (double)", "|GPU - CPU|");
+    const int g = gpu.digits, c = cpu.digits;
+    table.row("ray origin", gpu.rayOrigin, g, cpu.rayOrigin, c);
+    table.row("ray direction", gpu.rayDirection, g, cpu.rayDirection, c);
     const size_t objects = std::min(gpu.objects.size(), cpu.objects.size());
     for (size_t i = 0; i < objects; ++i) {
         table.text_ += objectName(scene, int(i)) + "\n";
-        table.row("  generic origin", gpu.objects[i].genericOrigin, cpu.objects[i].genericOrigin);
-        table.row("  generic direction", gpu.objects[i].genericDirection,
-                  cpu.objects[i].genericDirection);
-        table.row("  t", gpu.objects[i].t, cpu.objects[i].t);
+        table.row("  generic origin", gpu.objects[i].genericOrigin, g, cpu.objects[i].genericOrigin, c);
+        table.row("  generic direction", gpu.objects[i].genericDirection, g,
+                  cpu.objects[i].genericDirection, c);
+        table.row("  t", gpu.objects[i].t, g, cpu.objects[i].t, c);
     }
     const bool same = gpu.hitObject == cpu.hitObject;
     table.line("closest hit", objectName(scene, gpu.hitObject), objectName(scene, cpu.hitObject),
                same ? "same" : "DIFFERENT");
     if (gpu.hitObject >= 0 || cpu.hitObject >= 0) {
-        table.row("t", gpu.t, cpu.t);
-        table.row("point", gpu.point, cpu.point);
-        table.row("normal", gpu.normal, cpu.normal);
-        table.row("emissive", gpu.emissive, cpu.emissive);
-        table.row("ambient x global", gpu.ambient, cpu.ambient);
+        table.row("t", gpu.t, gpu.geometryDigits, cpu.t, cpu.geometryDigits);
+        table.row("point", gpu.point, g, cpu.point, c);
+        table.row("normal", gpu.normal, gpu.geometryDigits, cpu.normal, cpu.geometryDigits);
+        table.row("emissive", gpu.emissive, g, cpu.emissive, c);
+        table.row("ambient x global", gpu.ambient, g, cpu.ambient, c);
         const size_t lights = std::min(gpu.lights.size(), cpu.lights.size());
         for (size_t i = 0; i < lights; ++i) {
             const std::string light = "light " + std::to_string(i);
-            table.row(light + " m.s", gpu.lights[i].mDotS, cpu.lights[i].mDotS);
-            table.row(light + " diffuse", gpu.lights[i].diffuse, cpu.lights[i].diffuse);
-            table.row(light + " m.h", gpu.lights[i].mDotH, cpu.lights[i].mDotH);
-            table.row(light + " specular", gpu.lights[i].specular, cpu.lights[i].specular);
+            const PixelTrace::LightTerms &a = gpu.lights[i], &b = cpu.lights[i];
+            table.line(light + " feeler", feelerText(a), feelerText(b),
+                       a.feelerMet == b.feelerMet ? "same" : "DIFFERENT");
+            table.row(light + " m.s", a.mDotS, g, b.mDotS, c);
+            table.row(light + " diffuse", a.diffuse, g, b.diffuse, c);
+            table.row(light + " m.h", a.mDotH, g, b.mDotH, c);
+            table.row(light + " specular", a.specular, g, b.specular, c);
         }
     }
-    table.row("colour", gpu.color, cpu.color);
+    table.row("colour", gpu.color, g, cpu.color, c);
     return table.text_;
 }
 

@@ -1,5 +1,5 @@
 // `vkray stress` and `vkray report SCENE`: precision modes against
-// the long-double oracle over scenes/stress/, and error against run time over
+// the float128 oracle over scenes/stress/, and error against run time over
 // the knobs that trade them for one scene. Both print a table and write CSV,
 // JSON and a self-contained HTML page with SVG plots. `stress` exits 2 when a
 // robust or double row is beyond its bounds, or naive passes a case built to

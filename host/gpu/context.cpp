@@ -152,9 +152,11 @@ Fault injectedFault() {
     if (fault == "out-of-device-memory") return Fault::OutOfDeviceMemory;
     if (fault == "no-float64") return Fault::NoFloat64;
     if (fault == "slow-progress") return Fault::SlowProgress;
+    if (fault == "no-offset") return Fault::NoOffset;
     throw Error("VKRAY_FAULT='" + fault +
                 "' is not a fault vkray can inject (no-compute, device-lost, "
-                "out-of-device-memory, no-float64, slow-progress); it is a test hook: unset it");
+                "out-of-device-memory, no-float64, slow-progress, no-offset); it is a test hook: "
+                "unset it");
 }
 
 void explainVulkanFailure(const vk::SystemError& failure, const DeviceInfo& device) {

@@ -69,8 +69,11 @@ private:
 // `out-of-device-memory` (at the first buffer allocation), `no-float64` (no
 // device has shaderFloat64); or `slow-progress`: every progress report of a
 // render waits 25 ms, so that tests of progress lines and interruption do
-// not depend on the machine's speed. Unset: None. An unknown NAME is an Error.
-enum class Fault { None, NoCompute, DeviceLost, OutOfDeviceMemory, NoFloat64, SlowProgress };
+// not depend on the machine's speed; or `no-offset`: the shader's secondary
+// rays start on the surface they leave (VKRAY_FAULT_NO_OFFSET = 1), so that
+// tests can show `vkray stress` counting the acne that follows. Unset: None.
+// An unknown NAME is an Error.
+enum class Fault { None, NoCompute, DeviceLost, OutOfDeviceMemory, NoFloat64, SlowProgress, NoOffset };
 Fault injectedFault();
 
 }  // namespace vkray::gpu

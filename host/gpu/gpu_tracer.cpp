@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <time.h>
 
@@ -118,6 +120,8 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     if (features.kinds[KIND_BOOLEAN])
         needs.push_back(need(BINDING_CSG_NODES, "CSG nodes", packed.csgNodes, "Use fewer or simpler booleans"));
     if (doubles) needs.push_back(need(BINDING_DOUBLE_OBJECTS, "double transforms", packed.doubleObjects, fewerObjects));
+    if (features.stressOutput)
+        needs.push_back({"stress output", tilePixels, sizeof(GpuStressSample), false, "Use a smaller image"});
     return needs;
 }
 
@@ -185,6 +189,8 @@ public:
             add(BINDING_DOUBLE_CAMERA, std::vector<GpuDoubleCamera>{packDoubleCamera(camera)});
             add(BINDING_DOUBLE_OBJECTS, packed.doubleObjects);
         }
+        if (features.stressOutput)
+            add(BINDING_STRESS_OUTPUT, std::vector<GpuStressSample>(size_t(tile) * size_t(tile)));
         // Exactly the variant's bindings (bindingsFor): no buffer uploaded for nothing.
         if (bindings.size() != buffers_.size())
             throw Error("internal: the buffers uploaded differ from the variant's bindings");
@@ -280,6 +286,7 @@ public:
         buffer(BINDING_PIXELS).invalidate();
         buffer(BINDING_STATUS).invalidate();
         if (buffers_.count(BINDING_DEBUG)) buffer(BINDING_DEBUG).invalidate();
+        if (buffers_.count(BINDING_STRESS_OUTPUT)) buffer(BINDING_STRESS_OUTPUT).invalidate();
         return *static_cast<const GpuDispatchStatus*>(buffer(BINDING_STATUS).data());
     }
 
@@ -292,6 +299,9 @@ public:
         static_assert(sizeof bits == sizeof handle);
         std::memcpy(&bits, &handle, sizeof bits);
         return bits;
+    }
+    const GpuStressSample* stressSamples() const {
+        return static_cast<const GpuStressSample*>(buffer(BINDING_STRESS_OUTPUT).data());
     }
     const GpuDebugHeader& debugHeader() const {
         return *static_cast<const GpuDebugHeader*>(buffer(BINDING_DEBUG).data());
@@ -332,6 +342,39 @@ private:
 };
 
 glm::dvec3 toDvec3(const vec4& v) { return {v.x, v.y, v.z}; }
+
+double doubleOf(uint low, uint high) {
+    const std::uint64_t bits = std::uint64_t(low) | (std::uint64_t(high) << 32);
+    double d;
+    std::memcpy(&d, &bits, sizeof d);
+    return d;
+}
+
+// A GpuStressSample as the host reads it: t and the normal in double where
+// the fp64 variant wrote them so.
+StressSample decodeStressSample(const GpuStressSample& g, bool doubles) {
+    StressSample s;
+    std::memcpy(&s.object, &g.hit.x, sizeof s.object);
+    s.inDouble = doubles;
+    if (doubles) {
+        s.t = doubleOf(g.primaryDouble.x, g.primaryDouble.y);
+        s.normal = {doubleOf(g.primaryDouble.z, g.primaryDouble.w),
+                    doubleOf(g.normalDouble.x, g.normalDouble.y),
+                    doubleOf(g.normalDouble.z, g.normalDouble.w)};
+    } else {
+        s.t = g.primary.w;
+        s.normal = toDvec3(g.primary);
+    }
+    if (s.object < 0) s.t = std::numeric_limits<double>::infinity();
+    s.feelersTraced = g.hit.y;
+    s.feelersMet = g.hit.z;
+    s.feelersMetLeft = g.hit.w;
+    s.refractedTraced = g.refractedHit.y != 0;
+    std::memcpy(&s.refractedObject, &g.refractedHit.x, sizeof s.refractedObject);
+    s.refractedT = g.refracted.w;
+    s.refractedPoint = toDvec3(g.refracted);
+    return s;
+}
 
 }  // namespace
 
@@ -406,9 +449,23 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     return *pipelines_.back();
 }
 
-Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera,
+Frame GpuTracer::render(const Scene& scene, const CameraBasis& camera,
                         const RenderSettings& settings, GpuRenderStats* stats,
-                        const RenderProgress& progress, TileSchedule* schedule) try {
+                        const RenderProgress& progress, TileSchedule* schedule) {
+    return renderFrame(scene, camera, settings, stats, progress, schedule, nullptr);
+}
+
+Frame GpuTracer::renderStressOutput(const Scene& scene, const CameraBasis& camera,
+                                    const RenderSettings& settings,
+                                    std::vector<StressSample>& samples, GpuRenderStats* stats) {
+    if (settings.block != 1) throw Error("internal: the stress output is per pixel (block 1)");
+    return renderFrame(scene, camera, settings, stats, nullptr, nullptr, &samples);
+}
+
+Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalCamera,
+                             const RenderSettings& settings, GpuRenderStats* stats,
+                             const RenderProgress& progress, TileSchedule* schedule,
+                             std::vector<StressSample>* stressSamples) try {
     const GpuInputs inputs = prepareGpuInputs(options_.precision, original, originalCamera);
     const Scene& scene = inputs.scene;
     const CameraBasis& camera = inputs.camera;
@@ -421,8 +478,12 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
     if (settings.spp < 1 || settings.spp > kMaxSpp)
         throw Error("render: samples per pixel must be from 1 to " + std::to_string(kMaxSpp));
     const int samples = sampleEnd(settings) - settings.firstSample;  // traced per pixel
-    const ShaderFeatures features =
+    ShaderFeatures features =
         variantFeatures(scene, settings, options_.allFeatures, options_.precision);
+    features.stressOutput = stressSamples != nullptr;
+    if (stressSamples && scene.lights.size() > STRESS_MAX_LIGHTS)
+        throw Error("the stress output records the feelers of " + std::to_string(STRESS_MAX_LIGHTS) +
+                    " lights; this scene has " + std::to_string(scene.lights.size()));
     const Pipeline& pipeline = pipelineFor(features, st);
     // Tiles hold whole blocks, so a block never straddles two dispatches;
     // they shrink with the samples per pixel, so that no dispatch runs long,
@@ -434,6 +495,7 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
     const bool rayStack = features.has(Shading::Reflection) || features.has(Shading::Refraction);
     const size_t pixelBytes =
         sizeof(GpuPixel) + sizeof(GpuRayProgress) +
+        (features.stressOutput ? sizeof(GpuStressSample) : 0) +
         (rayStack ? size_t(pendingRayEntries(scene)) *
                         (features.doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask))
                   : 0);
@@ -445,6 +507,7 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
     st.setupSeconds = secondsSince(setupStart) - st.shader.seconds;
 
     Frame frame(settings.width, settings.height);
+    if (stressSamples) stressSamples->assign(frame.pixelCount(), StressSample{});
     const auto renderStart = Clock::now();
     const double renderCpuStart = processCpuSeconds();
     st.tiles = 0;
@@ -477,6 +540,9 @@ Frame GpuTracer::render(const Scene& original, const CameraBasis& originalCamera
                     frame.depth[i] = p.color.w;
                     frame.normal[i] = {p.normal.x, p.normal.y, p.normal.z};
                     std::memcpy(&frame.id[i], &p.normal.w, sizeof(std::int32_t));
+                    if (stressSamples)
+                        (*stressSamples)[i] = decodeStressSample(
+                            pass.stressSamples()[size_t(y) * size_t(w) + size_t(x)], features.doubles);
                 }
             }
             st.rays += size_t((w + block - 1) / block) * size_t((h + block - 1) / block) *
@@ -514,6 +580,7 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
         variantFeatures(scene, oneSample, options_.allFeatures, options_.precision);
     features.shading[size_t(Shading::Antialias)] = false;
     features.debugPixel = true;
+    features.stressOutput = true;
     const Pipeline& pipeline = pipelineFor(features, st);
     TracePass pass(context_.impl(), pipeline, features, features.doubles, scene,
                    camera, oneSample, 1);
@@ -524,9 +591,12 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
 
     const GpuDebugHeader& header = pass.debugHeader();
     const GpuDebugEntry* entries = pass.debugEntries();
+    const StressSample sample = decodeStressSample(pass.stressSamples()[0], features.doubles);
     PixelTrace trace;
     trace.x = x;
     trace.y = y;
+    trace.digits = 9;  // the debug record and shading are float
+    trace.geometryDigits = sample.inDouble ? 17 : 9;
     // Back from the mode's camera-relative world (numerics/precision.h) to the scene's.
     const glm::dvec3 shift = originalCamera.eye - camera.eye;
     trace.rayOrigin = toDvec3(header.rayOrigin) + shift;
@@ -538,15 +608,20 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
     }
     std::memcpy(&trace.hitObject, &header.normal.w, sizeof(std::int32_t));
     if (trace.hitObject >= 0) {
-        trace.t = header.hitPoint.w;
+        trace.t = sample.t;
         trace.point = toDvec3(header.hitPoint) + shift;
-        trace.normal = toDvec3(header.normal);
+        trace.normal = sample.normal;
         trace.emissive = toDvec3(header.emissive);
         trace.ambient = toDvec3(header.ambient);
     }
     for (uint i = 0; i < header.counts.y; ++i) {
         const GpuDebugEntry& e = entries[header.counts.x + i];
-        trace.lights.push_back({e.first.w, e.second.w, toDvec3(e.first), toDvec3(e.second)});
+        PixelTrace::LightTerms terms{e.first.w, e.second.w, toDvec3(e.first), toDvec3(e.second)};
+        if (i < STRESS_MAX_LIGHTS && sample.feelerTraced(int(i))) {
+            terms.feelerMet = sample.feelerMet(int(i));
+            terms.feelerMetLeft = sample.feelerMetLeft(int(i));
+        }
+        trace.lights.push_back(terms);
     }
     trace.color = toDvec3(header.color);
     return trace;

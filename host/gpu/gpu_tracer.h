@@ -8,6 +8,7 @@
 #include "gpu/spirv_cache.h"
 #include "image/frame.h"
 #include "image/pixel_trace.h"
+#include "image/stress_sample.h"
 #include "numerics/precision.h"
 #include "scene/camera.h"
 #include "scene/error.h"
@@ -99,8 +100,17 @@ public:
                  GpuRenderStats* stats = nullptr, const RenderProgress& progress = nullptr,
                  TileSchedule* schedule = nullptr);
 
+    // `vkray stress`: render (block 1) with the stress-output variant, which
+    // also writes what each pixel's primary ray and its secondary rays met;
+    // `samples` gets one per pixel, row-major.
+    Frame renderStressOutput(const Scene& scene, const CameraBasis& camera,
+                             const RenderSettings& settings, std::vector<StressSample>& samples,
+                             GpuRenderStats* stats = nullptr);
+
     // `vkray pixel`: traces pixel (x, y) alone with the debug-pixel variant,
-    // which records every object test and shading term.
+    // which records every object test and shading term, and the stress
+    // output (t and the normal as computed: in double for fp64; the shadow
+    // feelers' verdicts).
     PixelTrace tracePixel(const Scene& scene, const CameraBasis& camera,
                           const RenderSettings& settings, int x, int y,
                           GpuRenderStats* stats = nullptr);
@@ -111,6 +121,9 @@ public:
 
 private:
     const Pipeline& pipelineFor(const ShaderFeatures& features, GpuRenderStats& stats);
+    Frame renderFrame(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
+                      GpuRenderStats* stats, const RenderProgress& progress,
+                      TileSchedule* schedule, std::vector<StressSample>* stressSamples);
 
     Context& context_;
     GpuRenderOptions options_;

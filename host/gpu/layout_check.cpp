@@ -76,6 +76,13 @@ static_assert(sizeof(GpuPixel) == 32);
 
 static_assert(offsetof(GpuDebugHeader, color) == 96);
 static_assert(offsetof(GpuDebugHeader, counts) == 112);
+static_assert(offsetof(GpuStressSample, hit) == 16);
+static_assert(offsetof(GpuStressSample, primaryDouble) == 32);
+static_assert(offsetof(GpuStressSample, normalDouble) == 48);
+static_assert(offsetof(GpuStressSample, refracted) == 64);
+static_assert(offsetof(GpuStressSample, refractedHit) == 80);
+static_assert(sizeof(GpuStressSample) == 96);
+
 static_assert(sizeof(GpuDebugHeader) == 128);
 static_assert(sizeof(GpuDebugEntry) == 32);
 

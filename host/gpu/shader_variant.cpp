@@ -1,5 +1,7 @@
 #include "gpu/shader_variant.h"
 
+#include "gpu/context.h"
+
 #include "scene/error.h"
 #include "scene/scene_geometry.h"
 #include "shaders/layout.h"
@@ -88,6 +90,9 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines) {
     defines.emplace_back("VKRAY_LIGHTS", flag(features.lights || features.has(Shading::Shadows)));
     defines.emplace_back("VKRAY_OBJECT_BVH", flag(features.objectBvh));
     defines.emplace_back("VKRAY_DEBUG_PIXEL", flag(features.debugPixel));
+    defines.emplace_back("VKRAY_STRESS_OUTPUT", flag(features.stressOutput));
+    // A test hook, never set otherwise (gpu/context.h, VKRAY_FAULT=no-offset).
+    defines.emplace_back("VKRAY_FAULT_NO_OFFSET", flag(injectedFault() == Fault::NoOffset));
     defines.insert(defines.end(), userDefines.begin(), userDefines.end());
     return defines;
 }
@@ -96,8 +101,8 @@ std::vector<std::string> variantFlags() {
     std::vector<std::string> flags;
     for (const GpuKind& kind : kGpuKinds) flags.push_back(kind.define);
     for (const GpuShading& shading : kGpuShading) flags.push_back(shading.define);
-    for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_DEBUG_PIXEL", "VKRAY_PRECISION_NAIVE",
-                              "VKRAY_PRECISION_FP64"})
+    for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_DEBUG_PIXEL", "VKRAY_STRESS_OUTPUT",
+                              "VKRAY_FAULT_NO_OFFSET", "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64"})
         flags.push_back(other);
     return flags;
 }
@@ -120,6 +125,7 @@ std::string describe(const ShaderFeatures& features) {
             if (features.shading[i]) text += std::string("+") + kGpuShading[i].name;
     if (features.objectBvh) text += "+bvh";
     if (features.debugPixel) text += "+debug-pixel";
+    if (features.stressOutput) text += "+stress-output";
     if (features.doubles) text += "+fp64";
     return text;
 }
@@ -157,6 +163,7 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
         bindings.push_back({BINDING_DOUBLE_CAMERA, "camera in double", Storage});
         bindings.push_back({BINDING_DOUBLE_OBJECTS, "objects' M^-1 in double", Texels});
     }
+    if (features.stressOutput) bindings.push_back({BINDING_STRESS_OUTPUT, "stress output", Storage});
     return bindings;
 }
 
@@ -194,6 +201,15 @@ std::vector<ShaderFeatures> allVariants(bool everyCombination) {
         for (unsigned kind = 0; kind < kinds; ++kind) add(1u << kind, shading, false);
     }
     add(allKinds, allShading, true);
+    // `vkray stress` and `vkray pixel`: the stress output with everything.
+    ShaderFeatures stress;
+    stress.kinds.fill(true);
+    stress.shading.fill(true);
+    stress.stressOutput = true;
+    for (bool debugPixel : {false, true}) {
+        stress.debugPixel = debugPixel;
+        variants.push_back(stress);
+    }
     return variants;
 }
 

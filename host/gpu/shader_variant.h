@@ -63,6 +63,7 @@ struct ShaderFeatures {
     bool lights = true;       // the scene has lights (without, no light code: VKRAY_LIGHTS 0)
     bool objectBvh = false;   // objects found through a BVH
     bool debugPixel = false;  // `vkray pixel`: the shader writes a trace record
+    bool stressOutput = false;  // `vkray stress`, `vkray pixel`: GpuStressSample per pixel
     bool doubles = false;     // --precision fp64: camera and M^-1 read in double
 
     bool has(Shading s) const { return shading[size_t(s)]; }
@@ -79,12 +80,14 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
 Defines definesFor(const ShaderFeatures& features, const Defines& userDefines = {});
 
 // Every flag a variant defines, 0 or 1: the shapes, the shading features,
-// VKRAY_LIGHTS, VKRAY_OBJECT_BVH, VKRAY_DEBUG_PIXEL and the precision modes' two. The one
+// VKRAY_LIGHTS, VKRAY_OBJECT_BVH, VKRAY_DEBUG_PIXEL, VKRAY_STRESS_OUTPUT, the
+// test hook VKRAY_FAULT_NO_OFFSET and the precision modes' two. The one
 // list; shaders/variant_flags.glsl checks each is defined.
 std::vector<std::string> variantFlags();
 
 // "sphere+cube", "all shapes", "no shapes", then the shading features
-// ("+shadows+reflection", "+all shading"), "+bvh", "+debug-pixel" and "+fp64".
+// ("+shadows+reflection", "+all shading"), "+bvh", "+debug-pixel",
+// "+stress-output" and "+fp64".
 std::string describe(const ShaderFeatures& features);
 
 // How the shader reads a binding (shaders/layout.h, "Descriptor bindings").
@@ -110,8 +113,9 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features);
 // for all (110); every combination when everyCombination (--all: 530). Then
 // the shading features, whose code calls every shape's: each alone and all
 // together with all shapes, and all together with each kind alone and with
-// the debug-pixel record (162 in all); with --all, every combination of them
-// with all shapes and with each kind alone (1,138).
+// the debug-pixel record; with --all, every combination of them with all
+// shapes and with each kind alone. Last, the stress output with everything,
+// with and without the debug-pixel record (144 in all; --all: 1,668).
 std::vector<ShaderFeatures> allVariants(bool everyCombination = false);
 
 }  // namespace vkray::gpu

@@ -21,9 +21,15 @@ struct PixelTrace {
     struct LightTerms {
         double mDotS = 0, mDotH = 0;
         glm::dvec3 diffuse{0}, specular{0};  // the terms added to the colour
+        // Its shadow feeler, where one was traced: whether it met a surface
+        // before the light, and (where recorded) the object it left.
+        std::optional<bool> feelerMet, feelerMetLeft;
     };
 
     int x = 0, y = 0;  // the pixel
+    // Significant digits that show each number as it was computed: 9 for a
+    // float, 17 for a double. geometryDigits: t and the normal.
+    int digits = 17, geometryDigits = 17;
     glm::dvec3 rayOrigin{0}, rayDirection{0};
     std::vector<ObjectTest> objects;
     int hitObject = -1;  // -1: the background

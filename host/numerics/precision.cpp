@@ -2,6 +2,8 @@
 
 #include "scene/error.h"
 
+#include <cmath>
+
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
@@ -30,13 +32,36 @@ std::vector<std::pair<std::string, std::string>> precisionDefines(Precision prec
 
 namespace {
 
+// a b + c d + e f + g, rounded once (to within u of the result, plus u^2 of
+// the terms' sizes): Ogita, Rump and Oishi's Dot2, from error-free products
+// (fma) and sums (Knuth's TwoSum).
+double compensatedDot(const double (&a)[3], const glm::dvec3& b, double add) {
+    double sum = add, error = 0;
+    for (int j = 0; j < 3; ++j) {
+        const double product = a[j] * b[j];
+        const double productError = std::fma(a[j], b[j], -product);
+        const double next = sum + product;
+        const double back = next - sum;
+        error += productError + ((sum - (next - back)) + (product - back));
+        sum = next;
+    }
+    return sum + error;
+}
+
 // Camera-relative world: p' = p - origin. An object's M^-1 becomes
 // M^-1 T(origin), whose translation column M^-1 (origin, 1) is computed here
-// in double; so the eye's generic coordinates reach the shader rounded once,
-// instead of being rebuilt in float from a float eye and a float translation
-// that both lost the low digits (docs/numerics-background.md, "Far from the origin").
+// rounded once; so the eye's generic coordinates reach the shader rounded
+// once, instead of being rebuilt in float from a float eye and a float
+// translation that both lost the low digits (docs/numerics-background.md,
+// "Far from the origin"). In plain double the column would carry u_double
+// times the size of the terms (|M^-1| |origin|, 1e7 for an eye 1e7 away):
+// fp64's t off by 1e-10 of its distance at 10 units from such an eye.
 void rebaseObject(SceneObject& object, const glm::dvec3& origin) {
-    object.objectFromWorld = object.objectFromWorld * glm::translate(glm::dmat4(1.0), origin);
+    glm::dmat4& m = object.objectFromWorld;  // m[column][row]
+    for (int row = 0; row < 3; ++row) {
+        const double rowLinear[3] = {m[0][row], m[1][row], m[2][row]};
+        m[3][row] = compensatedDot(rowLinear, origin, m[3][row]);
+    }
     object.worldFromObject = glm::translate(glm::dmat4(1.0), -origin) * object.worldFromObject;
     for (SceneObject& operand : object.operands) rebaseObject(operand, origin);
 }

@@ -50,7 +50,7 @@ Image oraclePicture(const Scene& scene, const std::vector<OraclePixel>& oracle, 
 
 ModePicture markedPicture(const std::string& mode, const Frame& frame,
                           const std::vector<OraclePixel>& oracle,
-                          const std::vector<ModeSample>& samples, int band,
+                          const std::vector<StressSample>& samples, Arithmetic a,
                           const std::vector<std::size_t>& acnePixels) {
     if (oracle.size() != frame.pixelCount() || samples.size() != frame.pixelCount())
         throw Error("internal: the oracle's pixels and the frame's differ in number");
@@ -64,7 +64,7 @@ ModePicture markedPicture(const std::string& mode, const Frame& frame,
         ++picture.acne;
     }
     for (std::size_t i = 0; i < oracle.size(); ++i) {
-        const PixelVerdict verdict = classifyPixel(oracle[i], samples[i], band);
+        const PixelVerdict verdict = classifyPixel(oracle[i], samples[i], a);
         if (verdict == PixelVerdict::Flip) {
             marks.pixels[i] = kFlip;
             ++picture.flips;
@@ -122,7 +122,7 @@ void addStressPictures(Report& report, const std::vector<StressPicture>& picture
     gallery.paragraphs = {
         "For each case: the oracle's view (the object each exact ray hits in its diffuse colour, "
         "darker as the surface turns from the ray; the oracle traces no lights), then the image "
-        "each GPU mode rendered, with the pixels where that mode is wrong painted over. Silhouette "
+        "each GPU mode rendered, with the pixels where that mode is wrong painted over. Set-aside "
         "pixels (left out of the metrics) are not marked. A mode that did not run has no picture. "
         "Pictures wider than " +
         std::to_string(kStressPictureWidth) +
@@ -133,7 +133,7 @@ void addStressPictures(Report& report, const std::vector<StressPicture>& picture
     gallery.legend = {
         {hexColour(kFlipMark), "flip: hit where the oracle misses, or miss where it hits"},
         {hexColour(kWrongIdMark), "wrong id: another object than the oracle's"},
-        {hexColour(kAcneMark), "acne: a shadow feeler (or refracted ray) fails"}};
+        {hexColour(kAcneMark), "acne: a shadow feeler or refracted ray fails"}};
     for (const StressPicture& picture : pictures) {
         FigureGroup group;
         group.title = picture.caseName;

@@ -45,13 +45,14 @@ Image oraclePicture(const Scene& scene, const std::vector<OraclePixel>& oracle, 
                     int height);
 
 // A GPU mode's colour image (clamped to [0, 1]) with its flips and wrong ids
-// against the oracle (classifyPixel, in `band`) and its acne pixels
-// (feelers.h FeelerStats::failedPixels) painted in the marks' colours, as
+// against the oracle (classifyPixel, in arithmetic `a`) and its pixels whose
+// secondary rays failed (secondary_check.h SecondaryStats::failedPixels)
+// painted in the marks' colours, as
 // a PNG shrunk to at most kStressPictureWidth (the counts are the full
 // image's).
 ModePicture markedPicture(const std::string& mode, const Frame& frame,
                           const std::vector<OraclePixel>& oracle,
-                          const std::vector<ModeSample>& samples, int band,
+                          const std::vector<StressSample>& samples, Arithmetic a,
                           const std::vector<std::size_t>& acnePixels);
 
 // The oracle's view as a PNG, shrunk as markedPicture shrinks.

@@ -3,7 +3,7 @@
 #include "dist/bytes.h"
 #include "gpu/gpu_tracer.h"
 #include "image/pictures.h"
-#include "numerics/feelers.h"
+#include "numerics/secondary_check.h"
 #include "numerics/stress_pictures.h"
 #include "reference/scene_intersector.h"
 #include "scene/error.h"
@@ -43,12 +43,14 @@ int threadCount(int threads) {
     return threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
 }
 
+}  // namespace
+
 // The CPU reference in double: the reference's own intersector on the
 // primary ray built in double, t kept in double (a Frame's depth is float).
-std::vector<ModeSample> traceDouble(const Scene& scene, const CameraBasis& camera,
-                                    const RenderSettings& settings, int threads) {
+std::vector<StressSample> referenceSamples(const Scene& scene, const CameraBasis& camera,
+                                           const RenderSettings& settings, int threads) {
     const reference::SceneIntersector intersector(scene);
-    std::vector<ModeSample> samples(size_t(settings.width) * size_t(settings.height));
+    std::vector<StressSample> samples(size_t(settings.width) * size_t(settings.height));
     std::atomic<int> nextRow{0};
     auto worker = [&] {
         for (int y = nextRow++; y < settings.height; y = nextRow++) {
@@ -59,9 +61,12 @@ std::vector<ModeSample> traceDouble(const Scene& scene, const CameraBasis& camer
                                                     sx * camera.tanHalfFov * camera.aspect * camera.u +
                                                     sy * camera.tanHalfFov * camera.v);
                 const auto hit = intersector.closestHit({camera.eye, d}, 0.0);
-                ModeSample& s = samples[size_t(y) * size_t(settings.width) + size_t(x)];
-                s = hit ? ModeSample{hit->t, hit->normal, hit->object}
-                        : ModeSample{std::numeric_limits<double>::infinity(), glm::dvec3(0), -1};
+                StressSample& s = samples[size_t(y) * size_t(settings.width) + size_t(x)];
+                s.inDouble = true;
+                if (!hit) continue;
+                s.t = hit->t;
+                s.normal = hit->normal;
+                s.object = hit->object;
             }
         }
     };
@@ -71,16 +76,6 @@ std::vector<ModeSample> traceDouble(const Scene& scene, const CameraBasis& camer
     for (std::thread& t : pool) t.join();
     return samples;
 }
-
-std::vector<ModeSample> samplesOf(const Frame& frame) {
-    std::vector<ModeSample> samples(frame.pixelCount());
-    for (size_t i = 0; i < samples.size(); ++i)
-        samples[i] = {frame.id[i] >= 0 ? double(frame.depth[i]) : std::numeric_limits<double>::infinity(),
-                      glm::dvec3(frame.normal[i]), frame.id[i]};
-    return samples;
-}
-
-}  // namespace
 
 StressCase readStressCase(const std::string& path) {
     std::ifstream in(path);
@@ -102,15 +97,12 @@ StressCase readStressCase(const std::string& path) {
         if (key == "stress") current = &c.title;
         else if (key == "stiff") current = &c.stiff;
         else if (key == "correct") current = &c.correct;
-        else if (key == "naive" || key == "secondary") {
+        else if (key == "naive") {
             current = nullptr;
-            const bool naive = key == "naive";
-            if (naive && (value == "fails" || value == "passes")) c.naiveFails = value == "fails";
-            else if (!naive && (value == "shadow" || value == "refraction")) c.refraction = value == "refraction";
-            else
-                throw Error(path + ":" + std::to_string(lineNumber) + ": '" + key + ":' takes " +
-                            (naive ? "fails or passes" : "shadow or refraction") + ", found '" +
-                            value + "'");
+            if (value != "fails" && value != "passes")
+                throw Error(path + ":" + std::to_string(lineNumber) +
+                            ": 'naive:' takes fails or passes, found '" + value + "'");
+            c.naiveFails = value == "fails";
             continue;
         } else if (current && !body.empty()) {  // continuation of the last key
             *current += " " + body;
@@ -148,58 +140,63 @@ std::vector<StressCase> findStressCases(const std::string& directory, const std:
     return cases;
 }
 
-bool withinBounds(const ModeMetrics& m) {
-    const bool isDouble = m.mode == kCpuDoubleMode, isFp64 = m.mode == "fp64";
-    const double tBound = isDouble ? kDoubleTErrorBound : isFp64 ? kFp64TErrorBound : kFloatTErrorBound;
-    const double normalBound = isDouble ? kDoubleNormalErrorBound
-                               : isFp64 ? kFp64NormalErrorBound
-                                        : kFloatNormalErrorBound;
-    return m.ran && m.flips == 0 && m.wrongId == 0 && m.acne == 0 && m.tErrMax <= tBound &&
-           m.normalErrMax <= normalBound;
+Arithmetic arithmeticOf(const std::string& mode) {
+    return mode == kCpuDoubleMode ? kDoubleAsWritten : mode == "fp64" ? kDouble : kFloat;
 }
 
-PixelVerdict classifyPixel(const OraclePixel& o, const ModeSample& s, int band) {
-    if (o.silhouette[band]) return PixelVerdict::Silhouette;
-    if ((o.hit.id >= 0) != (s.id >= 0)) return PixelVerdict::Flip;
+bool withinBounds(const ModeMetrics& m) {
+    return m.ran && m.flips == 0 && m.wrongId == 0 && m.acne == 0 && m.shadowFlips == 0 &&
+           m.exitErrors == 0 && m.tRatioMax <= kTAllowanceMultiple &&
+           m.normalRatioMax <= kNormalAllowanceMultiple;
+}
+
+PixelVerdict classifyPixel(const OraclePixel& o, const StressSample& s, Arithmetic a) {
+    if (o.setAside[a]) return PixelVerdict::SetAside;
+    if ((o.hit.id >= 0) != (s.object >= 0)) return PixelVerdict::Flip;
     if (o.hit.id < 0) return PixelVerdict::BothMiss;
-    return o.hit.id != s.id ? PixelVerdict::WrongId : PixelVerdict::Compared;
+    return o.hit.id != s.object ? PixelVerdict::WrongId : PixelVerdict::Compared;
 }
 
 ModeMetrics compareWithOracle(const std::vector<OraclePixel>& oracle,
-                              const std::vector<ModeSample>& samples, int band) {
+                              const std::vector<StressSample>& samples, Arithmetic a) {
     if (oracle.size() != samples.size()) throw Error("internal: oracle and samples differ in size");
     ModeMetrics m;
     m.ran = true;
     m.pixels = oracle.size();
+    const double u = kUnitRoundoff[a], uWorld = a == kDoubleAsWritten ? kUnitRoundoff[a] : 0;
     double tSquares = 0, nSquares = 0;
     for (size_t i = 0; i < oracle.size(); ++i) {
         const OraclePixel& o = oracle[i];
-        const ModeSample& s = samples[i];
-        switch (classifyPixel(o, s, band)) {
-            case PixelVerdict::Silhouette:
-                ++m.silhouette;
-                continue;
-            case PixelVerdict::Flip:
-                ++m.flips;
-                continue;
-            case PixelVerdict::WrongId:
-                ++m.wrongId;
-                continue;
-            case PixelVerdict::BothMiss:
-                continue;
-            case PixelVerdict::Compared:
-                break;
+        const StressSample& s = samples[i];
+        m.besideEdges += o.besideEdge;
+        switch (classifyPixel(o, s, a)) {
+        case PixelVerdict::SetAside: ++m.setAside; continue;
+        case PixelVerdict::Flip: ++m.flips; continue;
+        case PixelVerdict::WrongId: ++m.wrongId; continue;
+        case PixelVerdict::BothMiss: continue;
+        case PixelVerdict::Compared: break;
         }
         ++m.compared;
-        const double tTrue = double(o.hit.t);
-        const double tErr = std::isfinite(s.t)
-                                ? std::max(0.0, std::abs(s.t - tTrue) - o.tSpread[band]) / tTrue
-                                : std::numeric_limits<double>::infinity();
-        const double nErr = std::max(0.0, angleBetween(s.normal, toDvec3(o.hit.normal)) - o.normalSpread[band]);
+        const double tErr = std::isfinite(s.t) ? double(abs(Quad(s.t) - o.hit.t) / o.hit.t)
+                                               : std::numeric_limits<double>::infinity();
+        const double angle = angleBetween(s.normal, toDvec3(o.hit.normal));
+        const double nErr = std::isnan(angle) ? M_PI : angle;
+        const Conditioning& c = o.conditioning;
+        // Against an infinite allowance (a grazing hit) the ratio is 0: no error is beyond it.
+        const auto ratio = [](double err, double allowance) {
+            return std::isinf(allowance) ? 0.0 : err / allowance;
+        };
         m.tErrMax = std::max(m.tErrMax, tErr);
-        m.normalErrMax = std::max(m.normalErrMax, std::isnan(nErr) ? M_PI : nErr);
+        m.normalErrMax = std::max(m.normalErrMax, nErr);
+        m.tConditionMax = std::max(m.tConditionMax, c.t);
+        m.tWorldMax = std::max(m.tWorldMax, c.tWorld);
+        m.normalConditionMax = std::max(m.normalConditionMax, c.normal);
+        m.normalWorldMax = std::max(m.normalWorldMax, c.normalWorld);
+        m.tRatioMax = std::max(m.tRatioMax, ratio(tErr, u * c.t + uWorld * c.tWorld));
+        m.normalRatioMax = std::max(m.normalRatioMax, ratio(nErr, u * c.normal + uWorld * c.normalWorld));
+        m.oracleBound = std::max(m.oracleBound, double(o.hit.tBound / o.hit.t));
         tSquares += tErr * tErr;
-        nSquares += std::isnan(nErr) ? M_PI * M_PI : nErr * nErr;
+        nSquares += nErr * nErr;
     }
     if (m.compared > 0) {
         m.tErrRms = std::sqrt(tSquares / double(m.compared));
@@ -215,9 +212,12 @@ template <typename Row, typename Visit>
 void forEachField(Row& m, Visit&& visit) {
     for (auto* text : {&m.caseName, &m.mode, &m.note}) visit(*text);
     visit(m.ran);
-    for (auto* count : {&m.pixels, &m.silhouette, &m.compared, &m.flips, &m.wrongId, &m.feelers, &m.acne})
+    for (auto* count : {&m.pixels, &m.setAside, &m.besideEdges, &m.compared, &m.flips, &m.wrongId,
+                        &m.feelers, &m.acne, &m.shadowFlips, &m.shadowEdges, &m.refracted, &m.exitErrors})
         visit(*count);
-    for (auto* value : {&m.seconds, &m.tErrMax, &m.tErrRms, &m.normalErrMax, &m.normalErrRms})
+    for (auto* value : {&m.seconds, &m.tErrMax, &m.tErrRms, &m.tConditionMax, &m.tWorldMax,
+                        &m.tRatioMax, &m.normalErrMax, &m.normalErrRms, &m.normalConditionMax,
+                        &m.normalWorldMax, &m.normalRatioMax, &m.oracleBound})
         visit(*value);
 }
 
@@ -275,33 +275,37 @@ std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Contex
             continue;
         }
         gpu::GpuTracer tracer(*context, {.shaderDirectory = options.shaderDirectory, .precision = precision});
-        // The fastest of three renders (the first also warms caches).
-        Frame frame;
+        // The time: the fastest of three plain renders (the first also warms
+        // caches); the numbers: the stress-output variant's, the same rays.
         double best = std::numeric_limits<double>::infinity();
         for (int run = 0; run < 3; ++run) {
             gpu::GpuRenderStats stats;
-            frame = tracer.render(scene, camera, settings, &stats);
+            tracer.render(scene, camera, settings, &stats);
             best = std::min(best, stats.renderSeconds);
         }
-        const std::vector<ModeSample> samples = samplesOf(frame);
-        // fp64 builds its rays in double: its band is double's.
-        const int band = precision == Precision::Fp64 ? 1 : 0;
-        m = compareWithOracle(oracle, samples, band);
-        const FeelerStats feelers = stressCase.refraction
-                                        ? refractionExitErrors(scene, camera, oracle, samples, precision)
-                                        : shadowFeelerAcne(scene, camera, oracle, samples, precision);
-        m.feelers = feelers.traced;
-        m.acne = feelers.failed;
+        std::vector<StressSample> samples;
+        const Frame frame = tracer.renderStressOutput(scene, camera, settings, samples);
+        const Arithmetic a = arithmeticOf(precisionName(precision));
+        m = compareWithOracle(oracle, samples, a);
+        const SecondaryStats secondary =
+            checkSecondaryRays(scene, camera, oracle, samples, a, originFootprintOf(precision),
+                               options.threads);
+        m.feelers = secondary.feelerPixels;
+        m.acne = secondary.acne;
+        m.shadowFlips = secondary.shadowFlips;
+        m.shadowEdges = secondary.shadowEdges;
+        m.refracted = secondary.refracted;
+        m.exitErrors = secondary.exitErrors;
         if (picture)
-            picture->modes.push_back(markedPicture(precisionName(precision), frame, oracle, samples,
-                                                   band, feelers.failedPixels));
+            picture->modes.push_back(markedPicture(precisionName(precision), frame, oracle, samples, a,
+                                                   secondary.failedPixels));
         finish(m, precisionName(precision), best);
     }
     if (options.cpuDouble) {
         const auto start = Clock::now();
-        const std::vector<ModeSample> samples = traceDouble(scene, camera, settings, options.threads);
+        const std::vector<StressSample> samples = referenceSamples(scene, camera, settings, options.threads);
         const double seconds = secondsSince(start);
-        finish(compareWithOracle(oracle, samples, 1), kCpuDoubleMode, seconds);
+        finish(compareWithOracle(oracle, samples, arithmeticOf(kCpuDoubleMode)), kCpuDoubleMode, seconds);
     }
     return rows;
 }

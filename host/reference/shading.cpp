@@ -96,6 +96,7 @@ glm::dvec3 WhittedShader::localShade(const WorldHit& hit, const Material& materi
             if (glm::dot(halfway, halfway) > 0) term.mDotH = glm::dot(m, glm::normalize(halfway));
             const glm::dvec3 a =
                 term.mDotS > 0 ? lightThrough(feelerOrigin, light.position) : glm::dvec3(0);
+            if (term.mDotS > 0) term.feelerMet = a != glm::dvec3(1);
             if (a != glm::dvec3(0)) {
                 term.diffuse = a * light.color * k * material.diffuse * term.mDotS;
                 if (term.mDotH > 0)

@@ -6,9 +6,7 @@
 #include "support/frame_difference.h"
 #include "support/gpu_fixture.h"
 
-#include "numerics/feelers.h"
 #include "reference/reference_tracer.h"
-#include "shaders/layout.h"
 
 #include <gtest/gtest.h>
 
@@ -58,20 +56,6 @@ TEST(NumericsEnvelope, HugeSphereSeenFromCloseHasNoShadowAcneInRobust) {
 
 TEST(NumericsEnvelope, HugeSphereSeenFromCloseHasNoShadowAcneInFp64) {
     expectAgreement("huge_sphere_near.sdl", Precision::Fp64);
-}
-
-// The replay of `vkray stress` moves the origin as the shader does: by the
-// larger of the eye-sized step and OFFSET_GENERIC_SCALE times the object's
-// generic scale along the normal.
-TEST(NumericsEnvelope, RobustOffsetCoversTheObjectsGenericRounding) {
-    using numerics::offsetRayOriginRobust;
-    // Near the eye the eye-sized step is 2^-18 of the largest coordinate (0.5).
-    EXPECT_EQ(offsetRayOriginRobust({0.5f, 0.1f, 0}, {0, 1, 0}, {0, 1, 0}).y, 0.1f + 0.5f / 262144.0f);
-    // A generic scale of 2000 (world units per generic unit along the normal) wins.
-    EXPECT_EQ(offsetRayOriginRobust({0.5f, 0.1f, 0}, {0, 1, 0}, {0, 1, 0}, 2000.0f).y,
-              0.1f + gpu::OFFSET_GENERIC_SCALE * 2000.0f);
-    // A small one leaves the eye-sized step.
-    EXPECT_EQ(offsetRayOriginRobust({0.5f, 0.1f, 0}, {0, 1, 0}, {0, 1, 0}, 0.01f).y, 0.1f + 0.5f / 262144.0f);
 }
 
 // The offset's floor from the object's own scale is 0 for planes and

@@ -61,6 +61,36 @@ TEST(PixelTrace, BothSidesRecordTheSameStepsOnAnAnalyticRay) {
     EXPECT_NEAR(gpu.lights[1].mDotH, cpu.lights[1].mDotH, 1e-5);
 }
 
+TEST(PixelTrace, TAndTheNormalAtTheModesPrecisionAndEachFeelersVerdict) {
+    // From (0, 0, 5.1) the unit sphere is hit at t = 4.1 (no float). Light 0
+    // is clear, light 1 behind the small sphere at (0, 1.5, 3).
+    const Scene scene = parseSdl("camera eye 0 0 5.1 look 0 0 0 up 0 1 0 fov 60\n"
+                                 "light 5 0 10 1 1 1 light 0 3 5 1 1 1\n"
+                                 "sphere push translate 0 1.5 3 scale 0.5 0.5 0.5 sphere pop\n",
+                                 "t.sdl", {});
+    const RenderSettings settings{5, 5, 1};
+    const CameraBasis camera = makeCameraBasis(*scene.camera, 5, 5);
+    for (Precision precision : {Precision::Robust, Precision::Fp64}) {
+        SCOPED_TRACE(precisionName(precision));
+        gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir, .precision = precision});
+        const PixelTrace gpu = tracer.tracePixel(scene, camera, settings, 2, 2);
+        const bool fp64 = precision == Precision::Fp64;
+        EXPECT_EQ(gpu.digits, 9);
+        EXPECT_EQ(gpu.geometryDigits, fp64 ? 17 : 9);
+        EXPECT_NEAR(gpu.t, 4.1, fp64 ? 1e-15 : 1e-6);
+        EXPECT_EQ(gpu.t == double(float(gpu.t)), !fp64);
+        ASSERT_EQ(gpu.lights.size(), 2u);
+        EXPECT_EQ(gpu.lights[0].feelerMet, std::optional<bool>(false));
+        EXPECT_EQ(gpu.lights[1].feelerMet, std::optional<bool>(true));
+        EXPECT_EQ(gpu.lights[1].feelerMetLeft, std::optional<bool>(false));
+    }
+    const PixelTrace cpu = reference::tracePixel(scene, camera, settings, 2, 2);
+    EXPECT_EQ(cpu.geometryDigits, 17);
+    EXPECT_NEAR(cpu.t, 4.1, 1e-15);
+    EXPECT_EQ(cpu.lights[0].feelerMet, std::optional<bool>(false));
+    EXPECT_EQ(cpu.lights[1].feelerMet, std::optional<bool>(true));
+}
+
 TEST(PixelTrace, AMissRecordsTheBackground) {
     const Scene scene = parseSdl("camera eye 0 0 5 background 0.25 0.5 0.75\n"
                                  "push translate 100 0 0 sphere pop\n",

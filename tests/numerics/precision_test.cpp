@@ -5,6 +5,7 @@
 #include "app/options.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/shader_variant.h"
+#include "numerics/bounded.h"
 #include "numerics/precision.h"
 #include "reference/reference_tracer.h"
 #include "scene/error.h"
@@ -111,6 +112,25 @@ TEST(Precision, RobustRebasesTheWorldOnTheEye) {
     const glm::dvec3 eyeGeneric(scene.objects[0].objectFromWorld * glm::dvec4(camera.eye, 1));
     const glm::dvec3 translation(inputs.scene.objects[0].objectFromWorld[3]);
     EXPECT_LE(glm::length(eyeGeneric - translation), 1e-7 * glm::length(eyeGeneric));
+}
+
+TEST(Precision, TheRebasedTranslationIsRoundedOnce) {
+    // M^-1 (eye, 1) for objects 1e7 away, seen from 10: in plain double it
+    // would carry u_double of 1e7 (1e-9); rounded once it is within half an
+    // ulp of the exact value (computed here in float128), plus u^2 of 1e7.
+    const Scene scene = parseSdl(kFarScene, "t.sdl", {});
+    const glm::dvec3 eye{10000006.37, 4.1, 8.3};
+    const Scene rebased = rebasedOnPoint(scene, eye);
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const glm::dmat4& m = scene.objects[i].objectFromWorld;
+        for (int row = 0; row < 3; ++row) {
+            numerics::Quad exact = m[3][row];
+            for (int j = 0; j < 3; ++j) exact += numerics::Quad(m[j][row]) * numerics::Quad(eye[j]);
+            const double got = rebased.objects[i].objectFromWorld[3][row];
+            EXPECT_LE(double(abs(numerics::Quad(got) - exact)), 0x1p-53 * std::abs(got) + 1e-22)
+                << "object " << i << " row " << row;
+        }
+    }
 }
 
 TEST(Precision, NaiveInvertsInFloatAndLosesIllConditionedTransforms) {

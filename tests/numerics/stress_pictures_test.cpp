@@ -22,8 +22,12 @@ OraclePixel oracleHit(int id, RVec normal = {0, 0, 1}, RVec direction = {0, 0, -
     return o;
 }
 
-ModeSample sampleOf(int id) {
-    return {id >= 0 ? 4.0 : std::numeric_limits<double>::infinity(), glm::dvec3(0, 0, 1), id};
+StressSample sampleOf(int id) {
+    StressSample s;
+    s.t = id >= 0 ? 4.0 : std::numeric_limits<double>::infinity();
+    s.normal = glm::dvec3(0, 0, 1);
+    s.object = id;
+    return s;
 }
 
 std::vector<float> pixel(const Image& image, size_t i) {
@@ -34,13 +38,13 @@ TEST(StressPictures, MarksFlipsWrongIdsAndAcneInTheirColours) {
     Frame frame(5, 1);
     for (glm::vec3& c : frame.color) c = {0.2f, 0.4f, 0.6f};
     frame.color[3] = {2, -1, std::nanf("")};  // shown clamped
-    // A flip, a wrong id, an agreeing pixel with acne, both missing, a silhouette.
+    // A flip, a wrong id, an agreeing pixel with acne, both missing, one set aside.
     std::vector<OraclePixel> oracle{oracleHit(0), oracleHit(0), oracleHit(1), oracleHit(-1),
                                     oracleHit(0)};
-    oracle[4].silhouette[0] = true;
-    const std::vector<ModeSample> samples{sampleOf(-1), sampleOf(1), sampleOf(1), sampleOf(-1),
+    oracle[4].setAside[kFloat] = true;
+    const std::vector<StressSample> samples{sampleOf(-1), sampleOf(1), sampleOf(1), sampleOf(-1),
                                           sampleOf(-1)};
-    const ModePicture picture = markedPicture("robust", frame, oracle, samples, 0, {2});
+    const ModePicture picture = markedPicture("robust", frame, oracle, samples, kFloat, {2});
     EXPECT_EQ(picture.mode, "robust");
     EXPECT_EQ(picture.flips, 1u);
     EXPECT_EQ(picture.wrongIds, 1u);
@@ -52,7 +56,7 @@ TEST(StressPictures, MarksFlipsWrongIdsAndAcneInTheirColours) {
     EXPECT_EQ(pixel(image, 2), (std::vector<float>{0, 1, 1}));  // acne: cyan
     EXPECT_EQ(pixel(image, 3), (std::vector<float>{1, 0, 0}));  // the image, clamped, NaN as 0
     EXPECT_EQ(pixel(image, 4), (std::vector<float>{51.0f / 255, 102.0f / 255,
-                                                   153.0f / 255}));  // silhouette: unmarked
+                                                   153.0f / 255}));  // set aside: unmarked
 }
 
 // Wider than kStressPictureWidth: shrunk, every mark kept (the strongest of a block).
@@ -61,10 +65,10 @@ TEST(StressPictures, ShrunkPicturesKeepEveryMark) {
     for (size_t i = 0; i < frame.pixelCount(); ++i)
         frame.color[i] = i % 2 ? glm::vec3(1) : glm::vec3(0);
     std::vector<OraclePixel> oracle(frame.pixelCount(), oracleHit(0));
-    std::vector<ModeSample> samples(frame.pixelCount(), sampleOf(0));
+    std::vector<StressSample> samples(frame.pixelCount(), sampleOf(0));
     samples[1] = sampleOf(-1);  // a flip beside acne at pixel 0
     samples[3] = sampleOf(1);   // a wrong id
-    const ModePicture picture = markedPicture("naive", frame, oracle, samples, 0, {0, 329});
+    const ModePicture picture = markedPicture("naive", frame, oracle, samples, kFloat, {0, 329});
     EXPECT_EQ(picture.flips, 1u);
     EXPECT_EQ(picture.wrongIds, 1u);
     EXPECT_EQ(picture.acne, 2u);
@@ -88,7 +92,7 @@ TEST(StressPictures, OracleViewShadesDiffuseByFacingOverTheBackground) {
     object.material.diffuse = {0.8, 0.4, 0.2};
     scene.objects.push_back(object);
     // Facing the ray, then at 60 degrees to it (|n.d| = 1/2), then nothing.
-    const Real s = std::sqrt(Real(3)) / 2;
+    const Real s = sqrt(Real(3)) / 2;
     const std::vector<OraclePixel> oracle{oracleHit(0), oracleHit(0, {0, 0, 1}, {s, 0, Real(-0.5)}),
                                           oracleHit(-1)};
     const Image image = oraclePicture(scene, oracle, 3, 1);
