@@ -1,7 +1,7 @@
 #include "bench/embree_tracer.h"
 
 #include "reference/object_intersect.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "scene/triangle_mesh.h"
 

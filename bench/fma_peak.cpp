@@ -2,7 +2,7 @@
 
 #include "gpu/context_impl.h"
 #include "gpu/shader_compiler.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <algorithm>
 #include <chrono>

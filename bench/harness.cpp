@@ -19,11 +19,11 @@
 #include "gpu/gpu_tracer.h"
 #include "reference/reference_tracer.h"
 #include "scene/camera.h"
-#include "scene/error.h"
+#include "util/error.h"
+#include "util/stopwatch.h"
 #include "scene/scene_geometry.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -38,11 +38,6 @@
 namespace {
 
 using namespace vkray;
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 struct BenchScene {
     std::string name;
@@ -217,10 +212,10 @@ double processCpuSeconds() {
 
 template <typename F>
 Timing timed(F&& work) {
-    const auto wall = Clock::now();
+    const Stopwatch wall;
     const double cpu = processCpuSeconds();
     work();
-    return {secondsSince(wall), processCpuSeconds() - cpu};
+    return {wall.seconds(), processCpuSeconds() - cpu};
 }
 
 // CPU time of allocating a zeroed Frame (tens of MB at 1920x1080: page
@@ -427,7 +422,7 @@ int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
     // lavapipe's thread count is pinned (as the tests do) unless the caller set it.
     if (!std::getenv("LP_NUM_THREADS")) ::setenv("LP_NUM_THREADS", std::to_string(o.threads).c_str(), 1);
-    const auto runStart = Clock::now();
+    const Stopwatch run;
     try {
         gpu::Context context;
         const gpu::DeviceInfo& device = context.device();
@@ -466,7 +461,7 @@ int main(int argc, char** argv) {
 
         if (o.experiments) runExperiments(o, context);
         if (o.onlyExperiments) {
-            std::printf("\ntotal %.0f s; load average %s\n", secondsSince(runStart), loadAverage().c_str());
+            std::printf("\ntotal %.0f s; load average %s\n", run.seconds(), loadAverage().c_str());
             return 0;
         }
         std::vector<Row> rows;
@@ -546,7 +541,7 @@ int main(int argc, char** argv) {
                 }
             }
 #endif
-            std::fprintf(stderr, "  %-12s done at %.0f s\n", bs.name.c_str(), secondsSince(runStart));
+            std::fprintf(stderr, "  %-12s done at %.0f s\n", bs.name.c_str(), run.seconds());
             rows.push_back(row);
         }
 
@@ -606,7 +601,7 @@ int main(int argc, char** argv) {
                         100 * kSlotsPerWholeSphereTest / cpuPerTest / peakFmaPerCpuSecond,
                         kSlotsPerWholeSphereTest);
         }
-        std::printf("\ntotal %.0f s; load average %s\n", secondsSince(runStart), loadAverage().c_str());
+        std::printf("\ntotal %.0f s; load average %s\n", run.seconds(), loadAverage().c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "vkray_bench: %s\n", e.what());
         return 1;

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "image/image_io.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string bytes(reinterpret_cast<const char*>(data), size);

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/mesh_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "scene/camera.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/sdl_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

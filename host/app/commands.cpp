@@ -18,7 +18,7 @@
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"
 #include "scene/camera.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/render_progress.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
@@ -236,7 +236,7 @@ bool compareAndReport(const Image& a, const Image& b, const Image* idsA, const I
         compareIds(*idsA, *idsB, result);
         result.passed = result.passed && result.idMismatchPercent <= options.failPercent;
     }
-    if (!diffPath.empty()) files.stageImage(diffPath, diffImage(a, b));
+    if (!diffPath.empty()) stageImage(files, diffPath, diffImage(a, b));
     out << formatCompareReport(result, options);
     return result.passed;
 }
@@ -293,10 +293,9 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
     const bool imageInAovs =
         !o.aovPrefix.empty() && isExrPath(o.aovPrefix) &&
         fs::path(output).lexically_normal() == fs::path(o.aovPrefix).lexically_normal();
-    if (!imageInAovs) files.stageImage(output, colorImage(frame));
+    if (!imageInAovs) stageImage(files, output, colorImage(frame));
     if (!o.aovPrefix.empty())
-        files.stageAovs(
-            o.aovPrefix, frame,
+        stageAovs(files, o.aovPrefix, frame,
             isExrPath(o.aovPrefix) ? hitPoints(frame, camera, settings) : std::vector<glm::vec3>{});
     if (stopRequested()) throw Interrupted();
     files.commit();

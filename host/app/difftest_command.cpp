@@ -10,11 +10,11 @@
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"
 #include "scene/camera.h"
-#include "scene/error.h"
+#include "util/error.h"
+#include "util/stopwatch.h"
 #include "scene/scene_geometry.h"
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <list>
 #include <map>
@@ -148,7 +148,7 @@ int runDifftest(const Options& o, std::ostream& out, std::ostream& err) {
     fs::create_directories(dir);
     gpu::Context context(gpu::ContextOptions{o.device, false, 0});
     Tracers tracers(context, o);
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch stopwatch;
     std::map<Precision, int> agreed, drawn, onlyAtCheckSize;
     int disagreed = 0, refused = 0;
     const Precision* only = o.precisionGiven ? &o.precision : nullptr;
@@ -181,8 +181,7 @@ int runDifftest(const Options& o, std::ostream& out, std::ostream& err) {
         out << "DISAGREE seed " << seed << " (" << precisionName(r.precision) << "): " << v.figures
             << "\n  " << commandFor(path, r) << std::endl;
     }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = stopwatch.seconds();
     out << "difftest: " << o.difftestScenes << " scenes (seeds " << std::uint64_t(o.seed) << " to "
         << std::uint64_t(o.seed) + std::uint64_t(std::max(o.difftestScenes, 1) - 1) << ") in "
         << int(seconds + 0.5) << " s:";

@@ -1,7 +1,7 @@
 #include "app/options.h"
 
 #include "scene/camera.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <charconv>
 #include <algorithm>

@@ -9,7 +9,7 @@
 #include "numerics/stress_pictures.h"
 #include "numerics/stress_report.h"
 #include "numerics/stress_suite.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/scene_geometry.h"
 
 #include <algorithm>

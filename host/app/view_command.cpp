@@ -11,7 +11,7 @@
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <algorithm>
 #include <atomic>

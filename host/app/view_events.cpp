@@ -1,6 +1,7 @@
 #include "app/view_events.h"
 
-#include "scene/error.h"
+#include "util/error.h"
+#include "util/files.h"
 
 #include <charconv>
 #include <cmath>
@@ -94,11 +95,9 @@ std::vector<ViewEvent> parseViewEvents(const std::string& text, const std::strin
 }
 
 std::vector<ViewEvent> readViewEvents(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("--events " + path + ": cannot read the file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parseViewEvents(text.str(), path);
+    const std::optional<std::string> text = readFileIfPresent(path);
+    if (!text) throw Error("--events " + path + ": cannot read the file");
+    return parseViewEvents(*text, path);
 }
 
 }  // namespace vkray

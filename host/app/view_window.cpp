@@ -1,6 +1,6 @@
 #include "app/view_window.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>

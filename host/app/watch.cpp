@@ -1,6 +1,6 @@
 #include "app/watch.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <csignal>
 #include <cstring>

@@ -4,7 +4,7 @@
 // would. Both ends are the same binary, so byte order needs no care.
 #pragma once
 
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <cstdint>
 #include <cstring>

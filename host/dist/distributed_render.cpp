@@ -1,7 +1,7 @@
 #include "dist/distributed_render.h"
 
 #include "dist/job_hand_out.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <atomic>
 #include <cstdint>

@@ -1,6 +1,7 @@
 #include "dist/job_hand_out.h"
 
-#include "scene/error.h"
+#include "util/error.h"
+#include "util/stopwatch.h"
 
 #include <algorithm>
 #include <chrono>
@@ -97,7 +98,7 @@ struct JobHandOut::State {
     void answerWorkers() {
         for (int working = workers; working > 0;) {
             const MPI_Status status = waitForMessage(MPI_ANY_SOURCE, kAsk);
-            const auto start = std::chrono::steady_clock::now();
+            const Stopwatch answering;
             auto [done, result] = receiveMessage(status);
             std::optional<std::size_t> job;
             std::string description;
@@ -113,8 +114,7 @@ struct JobHandOut::State {
             }
             if (!job) --working;
             sendMessage(status.MPI_SOURCE, kGive, job ? std::int64_t(*job) : kNone, description);
-            answeringSeconds +=
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            answeringSeconds += answering.seconds();
         }
     }
 };

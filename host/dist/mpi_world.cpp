@@ -1,6 +1,6 @@
 #include "dist/mpi_world.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <sched.h>
 #include <unistd.h>

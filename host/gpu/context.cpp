@@ -1,6 +1,6 @@
 #include "gpu/context_impl.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <cstdio>
 #include <cstdlib>

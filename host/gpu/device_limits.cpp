@@ -1,6 +1,6 @@
 #include "gpu/device_limits.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <algorithm>
 #include <charconv>

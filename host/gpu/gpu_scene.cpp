@@ -1,7 +1,7 @@
 #include "gpu/gpu_scene.h"
 
 #include "image/image_io.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/pixmaps.h"
 #include "scene/scene_geometry.h"
 #include "scene/triangle_mesh.h"

@@ -4,7 +4,7 @@
 #include "gpu/device_limits.h"
 #include "gpu/gpu_scene.h"
 #include "gpu/shader_variant.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "shaders/layout.h"
 
 #include <algorithm>

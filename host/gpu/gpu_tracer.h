@@ -11,7 +11,7 @@
 #include "image/stress_sample.h"
 #include "numerics/precision.h"
 #include "scene/camera.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/render_progress.h"
 #include "scene/scene.h"
 #include "scene/tile_schedule.h"

@@ -2,7 +2,7 @@
 
 #include "gpu/context_impl.h"
 #include "gpu/spirv_cache.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "shaders/layout.h"
 
 #include <algorithm>

@@ -1,6 +1,7 @@
 #include "gpu/shader_compiler.h"
 
-#include "scene/error.h"
+#include "util/error.h"
+#include "util/files.h"
 
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
@@ -28,15 +29,6 @@ void ensureGlslang() {
     static GlslangProcess process;
 }
 
-bool readText(const fs::path& path, std::string& text) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return false;
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    text = buffer.str();
-    return true;
-}
-
 // Resolves `#include "x"` relative to the including file, then to the shader
 // folder, and never outside the shader folder.
 class FolderIncluder : public glslang::TShader::Includer {
@@ -62,11 +54,9 @@ private:
         fs::path path = fs::weakly_canonical(candidate);
         auto [rootEnd, _] = std::mismatch(root_.begin(), root_.end(), path.begin(), path.end());
         if (rootEnd != root_.end()) return nullptr;  // outside the shader folder
-        auto* text = new std::string;
-        if (!readText(path, *text)) {
-            delete text;
-            return nullptr;
-        }
+        std::optional<std::string> bytes = readFileIfPresent(path.string());
+        if (!bytes) return nullptr;
+        auto* text = new std::string(std::move(*bytes));
         return new IncludeResult(path.string(), text->data(), text->size(), text);
     }
     fs::path root_;
@@ -83,8 +73,8 @@ std::string glslangVersion() {
 std::vector<std::uint32_t> compileComputeShader(const ShaderSource& source) {
     ensureGlslang();
     const fs::path mainPath = fs::path(source.directory) / source.mainFile;
-    std::string text;
-    if (!readText(mainPath, text))
+    const std::optional<std::string> text = readFileIfPresent(mainPath.string());
+    if (!text)
         throw Error("cannot read shader '" + mainPath.string() +
                     "'; pass the shader folder with --shader-dir DIR");
 
@@ -94,8 +84,8 @@ std::vector<std::uint32_t> compileComputeShader(const ShaderSource& source) {
 
     glslang::TShader shader(EShLangCompute);
     const std::string name = mainPath.string();
-    const char* texts[] = {text.c_str()};
-    const int lengths[] = {int(text.size())};
+    const char* texts[] = {text->c_str()};
+    const int lengths[] = {int(text->size())};
     const char* names[] = {name.c_str()};
     shader.setStringsWithLengthsAndNames(texts, lengths, names, 1);
     shader.setPreamble(preamble.c_str());

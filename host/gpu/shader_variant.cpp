@@ -2,7 +2,7 @@
 
 #include "gpu/context.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "shaders/layout.h"
 

@@ -1,14 +1,12 @@
 #include "gpu/spirv_cache.h"
 
-#include "image/image_io.h"
+#include "util/files.h"
+#include "util/stopwatch.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace vkray::gpu {
 
@@ -57,11 +55,8 @@ std::string spirvCacheKey(const ShaderSource& source) {
         if (it->is_regular_file() && isShaderSource(it->path())) files.push_back(it->path());
     std::sort(files.begin(), files.end());
     for (const fs::path& file : files) {
-        std::ifstream in(file, std::ios::binary);
-        std::ostringstream bytes;
-        bytes << in.rdbuf();
         h.add(fs::relative(file, source.directory).string());
-        h.add(bytes.str());
+        h.add(readFileIfPresent(file.string()).value_or(""));
     }
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.hash));
@@ -69,16 +64,13 @@ std::string spirvCacheKey(const ShaderSource& source) {
 }
 
 CompiledShader loadOrCompile(const ShaderSource& source) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch stopwatch;
     CompiledShader result;
     result.key = spirvCacheKey(source);
     const fs::path file = fs::path(spirvCacheDirectory()) / (result.key + ".spv");
 
-    std::ifstream in(file, std::ios::binary);
-    if (in) {
-        std::ostringstream bytes;
-        bytes << in.rdbuf();
-        const std::string data = bytes.str();
+    if (const std::optional<std::string> cached = readFileIfPresent(file.string())) {
+        const std::string& data = *cached;
         if (data.size() >= 20 && data.size() % 4 == 0) {
             result.spirv.resize(data.size() / 4);
             std::copy(data.begin(), data.end(), reinterpret_cast<char*>(result.spirv.data()));
@@ -97,8 +89,7 @@ CompiledShader loadOrCompile(const ShaderSource& source) {
             // An unwritable cache costs only the next compile.
         }
     }
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.seconds = stopwatch.seconds();
     return result;
 }
 

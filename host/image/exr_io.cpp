@@ -1,7 +1,7 @@
 #include "image/exr_io.h"
 
 #include "image/image_io.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>

@@ -2,12 +2,8 @@
 
 #include "image/exr_io.h"
 
-#include <fcntl.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
-#include <sys/stat.h>
-#include <pthread.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -23,7 +19,8 @@
 #include <filesystem>
 #include <optional>
 
-#include "scene/error.h"
+#include "util/error.h"
+#include "util/files.h"
 
 namespace vkray {
 
@@ -40,10 +37,6 @@ std::string tooManyPixels(const std::string& path, long long width, long long he
     return path + ": the image is " + std::to_string(width) + "x" + std::to_string(height) +
            ", above vkray's limit of " + std::to_string(kMaxImagePixels) + " pixels (" +
            std::to_string(kMaxImageSide) + " per side)";
-}
-
-std::string errnoText(int error) {
-    return std::strerror(error);
 }
 
 // ".PNG" -> ".png"; empty when the path has no extension.
@@ -95,31 +88,6 @@ void requireWritable(const std::string& path, const Image& image) {
                     " channel(s) and " + std::to_string(image.pixels.size()) +
                     " values; only non-empty 1- or 3-channel images with matching data can be "
                     "written");
-}
-
-struct FileCloser {
-    int fd;
-    ~FileCloser() { ::close(fd); }
-};
-
-std::string readFile(const std::string& path) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) throw Error("cannot read " + path + ": " + errnoText(errno));
-    const FileCloser closer{fd};  // on every exit, including the throws below
-    struct stat info {};
-    if (::fstat(fd, &info) != 0) throw Error("cannot read " + path + ": " + errnoText(errno));
-    if (S_ISDIR(info.st_mode)) throw Error("cannot read " + path + ": " + errnoText(EISDIR));
-    std::string bytes;
-    if (S_ISREG(info.st_mode)) bytes.reserve(size_t(info.st_size));
-    char buffer[1 << 16];
-    for (;;) {
-        const ssize_t n = ::read(fd, buffer, sizeof buffer);
-        if (n < 0 && errno == EINTR) continue;
-        if (n < 0) throw Error("cannot read " + path + ": " + errnoText(errno));
-        if (n == 0) break;
-        bytes.append(buffer, size_t(n));
-    }
-    return bytes;
 }
 
 // ---- PNG -------------------------------------------------------------------
@@ -442,13 +410,6 @@ Image decodePfm(const std::string& path, const std::string& bytes) {
     return image;
 }
 
-// ---- atomic write ------------------------------------------------------------
-
-std::string temporaryPathFor(const std::string& path) {
-    static std::atomic<unsigned> counter{0};
-    return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-}
-
 }  // namespace
 
 unsigned char pngByte(float value) { return toByte(value); }
@@ -491,7 +452,7 @@ std::string pngBytes(const Image& image) {
 
 void writeImage(const std::string& path, const Image& image) {
     StagedFiles files;
-    files.stageImage(path, image);
+    stageImage(files, path, image);
     files.commit();
 }
 
@@ -526,16 +487,10 @@ Image readImage(const std::string& path) {
     return decodeImage(readFile(path), path);
 }
 
-void writeFileAtomically(const std::string& path, const std::string& bytes) {
-    StagedFiles files;
-    files.stage(path, bytes);
-    files.commit();
-}
-
 void writeAovs(const std::string& target, const Frame& frame,
                const std::vector<glm::vec3>& hitPoints) {
     StagedFiles files;
-    files.stageAovs(target, frame, hitPoints);
+    stageAovs(files, target, frame, hitPoints);
     files.commit();
 }
 
@@ -544,89 +499,26 @@ std::string aovFilesText(const std::string& target) {
     return target + ".depth.pfm, .normal.pfm, .id.pfm";
 }
 
-// ---- staged files ------------------------------------------------------------
+// ---- staged images ---------------------------------------------------------
 
-StagedFiles::~StagedFiles() {
-    for (const auto& file : staged_) ::unlink(file.first.c_str());
-    release();
-}
-
-void StagedFiles::release() {
-    if (holding_) ::pthread_sigmask(SIG_SETMASK, &previousMask_, nullptr);
-    holding_ = false;
-}
-
-void StagedFiles::stage(const std::string& path, const std::string& bytes) {
-    if (!holding_) {
-        sigset_t stopSignals;
-        sigemptyset(&stopSignals);
-        for (int signal : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&stopSignals, signal);
-        holding_ = ::pthread_sigmask(SIG_BLOCK, &stopSignals, &previousMask_) == 0;
-    }
-    // A folder in the way would fail only at commit(), after other files of
-    // the set were renamed: refuse it now, while nothing has changed.
-    struct stat destination {};
-    if (::stat(path.c_str(), &destination) == 0 && S_ISDIR(destination.st_mode))
-        throw Error("cannot write " + path + ": " + errnoText(EISDIR));
-    const std::string temporary = temporaryPathFor(path);
-    // O_EXCL: never write through a stale temporary or a link someone left there.
-    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0) throw Error("cannot write " + path + ": " + errnoText(errno));
-    staged_.emplace_back(temporary, path);  // from here on, the destructor removes it
-
-    const auto fail = [&](int error) {
-        throw Error("cannot write " + path + ": " + errnoText(error));
-    };
-    size_t written = 0;
-    while (written < bytes.size()) {
-        const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-        if (n < 0 && errno == EINTR) continue;
-        if (n < 0) {
-            const int error = errno;
-            ::close(fd);
-            fail(error);
-        }
-        written += size_t(n);
-    }
-    // fsync before rename: after a crash the destination is the old or the new
-    // file, never a renamed but still empty one.
-    if (::fsync(fd) != 0) {
-        const int error = errno;
-        ::close(fd);
-        fail(error);
-    }
-    if (::close(fd) != 0) fail(errno);
-}
-
-void StagedFiles::stageImage(const std::string& path, const Image& image) {
+void stageImage(StagedFiles& files, const std::string& path, const Image& image) {
     const Format format = formatOf(path, false);
     requireWritable(path, image);
-    stage(path, format == Format::Png   ? encodePng(path, image)
+    files.stage(path, format == Format::Png   ? encodePng(path, image)
                 : format == Format::Exr ? encodeExr(exrFromImage(image), path)
                                         : encodePfm(image));
 }
 
-void StagedFiles::stageAovs(const std::string& target, const Frame& frame,
-                            const std::vector<glm::vec3>& hitPoints) {
+void stageAovs(StagedFiles& files, const std::string& target, const Frame& frame,
+               const std::vector<glm::vec3>& hitPoints) {
     if (isExrPath(target)) {
-        stage(target, encodeExr(aovExr(frame, hitPoints), target));
+        files.stage(target, encodeExr(aovExr(frame, hitPoints), target));
         return;
     }
     const std::string& prefix = target;
-    stageImage(prefix + ".depth.pfm", depthImage(frame));
-    stageImage(prefix + ".normal.pfm", normalImage(frame));
-    stageImage(prefix + ".id.pfm", idImage(frame));
-}
-
-void StagedFiles::commit() {
-    // Renames within one folder: each is atomic, and none can run out of space.
-    while (!staged_.empty()) {
-        const auto& [temporary, path] = staged_.front();
-        if (::rename(temporary.c_str(), path.c_str()) != 0)
-            throw Error("cannot write " + path + ": " + errnoText(errno));
-        staged_.erase(staged_.begin());
-    }
-    release();
+    stageImage(files, prefix + ".depth.pfm", depthImage(frame));
+    stageImage(files, prefix + ".normal.pfm", normalImage(frame));
+    stageImage(files, prefix + ".id.pfm", idImage(frame));
 }
 
 }  // namespace vkray

@@ -6,12 +6,11 @@
 #pragma once
 
 #include "image/frame.h"
+#include "util/files.h"
 
 #include <glm/vec3.hpp>
 
-#include <csignal>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace vkray {
@@ -70,10 +69,6 @@ Image decodeImage(const std::string& bytes, const std::string& path);
 inline constexpr long kMaxImageSide = 1 << 16;
 inline constexpr long long kMaxImagePixels = 64ll << 20;
 
-// Writes `bytes` to `path` atomically (temporary file in the same folder,
-// fsync, rename). Throws Error naming the path.
-void writeFileAtomically(const std::string& path, const std::string& bytes);
-
 // --aov TARGET. TARGET ending in .exr: one OpenEXR file with every layer
 // (exr_io.h aovExr(): the colour, depth, normal, id and the world hit
 // points `hitPoints`, one per pixel). Otherwise TARGET is a prefix:
@@ -84,32 +79,10 @@ void writeAovs(const std::string& target, const Frame& frame,
 // The files writeAovs writes for `target`, for a "wrote ..." line.
 std::string aovFilesText(const std::string& target);
 
-// Files that appear together or not at all (an image, its AOVs, a diff):
-// stage() writes each in full to a temporary file beside its destination
-// (fsync'd), commit() renames them all into place. Destroyed before
-// commit(), it removes its temporaries, so a failed or interrupted run
-// leaves every destination as it was. From the first stage() to the end,
-// SIGINT, SIGTERM and SIGHUP are held back in the calling thread, so that a
-// single-threaded command is not killed with a temporary on disk (render
-// installs handlers of its own, which every thread obeys).
-class StagedFiles {
-public:
-    StagedFiles() = default;
-    ~StagedFiles();
-    StagedFiles(const StagedFiles&) = delete;
-    StagedFiles& operator=(const StagedFiles&) = delete;
-
-    void stage(const std::string& path, const std::string& bytes);  // throws Error naming path
-    void stageImage(const std::string& path, const Image& image);    // as writeImage
-    void stageAovs(const std::string& target, const Frame& frame,    // as writeAovs
-                   const std::vector<glm::vec3>& hitPoints);
-    void commit();
-
-private:
-    void release();
-    std::vector<std::pair<std::string, std::string>> staged_;  // temporary, destination
-    bool holding_ = false;
-    sigset_t previousMask_{};
-};
+// writeImage and writeAovs as part of a set of files written together
+// (util/files.h StagedFiles).
+void stageImage(StagedFiles& files, const std::string& path, const Image& image);
+void stageAovs(StagedFiles& files, const std::string& target, const Frame& frame,
+               const std::vector<glm::vec3>& hitPoints);
 
 }  // namespace vkray

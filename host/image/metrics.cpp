@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "scene/error.h"
+#include "util/error.h"
 
 namespace vkray {
 

@@ -1,6 +1,6 @@
 #include "image/pictures.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <algorithm>
 #include <array>

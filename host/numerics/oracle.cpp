@@ -1,7 +1,7 @@
 #include "numerics/oracle.h"
 
-#include "scene/error.h"
-#include "scene/file_loc.h"
+#include "util/error.h"
+#include "util/file_loc.h"
 
 #include <algorithm>
 #include <atomic>

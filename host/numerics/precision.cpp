@@ -1,6 +1,6 @@
 #include "numerics/precision.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <cmath>
 

@@ -5,10 +5,10 @@
 #include "gpu/gpu_tracer.h"
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"
-#include "scene/error.h"
+#include "util/error.h"
+#include "util/stopwatch.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <limits>
 #include <map>
@@ -19,11 +19,6 @@ namespace vkray::numerics {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string sizeText(const RenderSettings& s) {
     return std::to_string(s.width) + "x" + std::to_string(s.height);
@@ -142,10 +137,10 @@ std::vector<SweepPoint> runSweep(const Scene& scene, const Camera& camera, gpu::
     std::vector<std::string> rendered =
         dist::runJobsAcrossRanks(world, sizes.size(), [&](std::size_t job) {
             const RenderSettings full{sizes[job].first, sizes[job].second, 1, kReferenceSpp};
-            const auto start = Clock::now();
+            const Stopwatch stopwatch;
             const Frame frame = reference::render(
                 scene, makeCameraBasis(camera, full.width, full.height), full, {threads});
-            const double seconds = secondsSince(start);
+            const double seconds = stopwatch.seconds();
             if (log) *log << "reference " << sizeText(full) << ": cpu double " << seconds << " s\n";
             return encodeReference(seconds, frame);
         });

@@ -1,7 +1,7 @@
 #include "numerics/report_writer.h"
 
 #include "image/image_io.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <algorithm>
 #include <cmath>

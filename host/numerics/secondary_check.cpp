@@ -1,6 +1,6 @@
 #include "numerics/secondary_check.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "shaders/layout.h"
 
 #include <algorithm>

@@ -3,7 +3,7 @@
 #include "dist/bytes.h"
 #include "image/image_io.h"
 #include "image/pictures.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 #include "numerics/secondary_check.h"
 #include "numerics/stress_pictures.h"
 #include "reference/scene_intersector.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/scene_geometry.h"
 
 #include <glm/geometric.hpp>

@@ -2,8 +2,8 @@
 #include "reference/csg.h"
 
 #include "reference/mesh_intersect.h"
-#include "scene/error.h"
-#include "scene/file_loc.h"
+#include "util/error.h"
+#include "util/file_loc.h"
 
 #include <algorithm>
 #include <climits>

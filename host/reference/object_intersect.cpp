@@ -4,8 +4,8 @@
 
 #include "reference/csg.h"
 #include "reference/mesh_intersect.h"
-#include "scene/error.h"
-#include "scene/file_loc.h"
+#include "util/error.h"
+#include "util/file_loc.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>

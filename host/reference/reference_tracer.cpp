@@ -6,20 +6,17 @@
 
 #include "reference/scene_intersector.h"
 #include "reference/shading.h"
-#include "scene/error.h"
+#include "util/error.h"
+#include "util/parallel_for.h"
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <mutex>
 #include <optional>
 #include <string>
-#include <system_error>
-#include <thread>
 #include <vector>
 
 namespace vkray::reference {
@@ -125,13 +122,10 @@ Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings
     const int block = std::max(settings.block, 1);
     Frame frame(settings.width, settings.height);
 
-    // Block rows are handed out through an atomic counter. Each pixel's value
+    // Block rows are handed out to the threads in turn. Each pixel's value
     // depends only on its own ray, so the image is the same for any thread
     // count and any order.
     const int blockRows = (settings.height + block - 1) / block;
-    int threads = options.threads > 0 ? options.threads
-                                      : int(std::thread::hardware_concurrency());
-    threads = std::clamp(threads, 1, blockRows);
 
     const SceneIntersector intersector(scene, options.bruteForce);  // one BVH for all rays
     const WhittedShader shader(scene, intersector);
@@ -139,34 +133,16 @@ Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings
     const std::size_t totalRays = raysPerRow * std::size_t(blockRows);
     if (options.progress && !options.progress(0, totalRays)) throw Interrupted();
     std::atomic<std::size_t> raysDone{0};
-    std::atomic<int> nextRow{0};
-    std::exception_ptr failure;
-    std::mutex failureMutex;
-    auto worker = [&] {
-        try {
-            for (int row = nextRow++; row < blockRows; row = nextRow++) {
-                renderBlockRow(shader, camera, settings, block, row * block, frame);
-                const std::size_t done = raysDone += raysPerRow;
-                if (options.progress && !options.progress(done, totalRays)) throw Interrupted();
-            }
-        } catch (...) {
-            // Stop every worker and rethrow the first failure on the caller's thread.
-            nextRow = blockRows;
-            const std::lock_guard<std::mutex> lock(failureMutex);
-            if (!failure) failure = std::current_exception();
-        }
-    };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) {
-        try {
-            pool.emplace_back(worker);
-        } catch (const std::system_error&) {
-            break;  // no more threads to be had: the ones we have finish the image
-        }
-    }
-    worker();  // the calling thread works too
-    for (std::thread& thread : pool) thread.join();
-    if (failure) std::rethrow_exception(failure);
+    // The first failure (Interrupted included) stops every worker and is
+    // rethrown here.
+    parallelFor(
+        std::size_t(blockRows),
+        [&](std::size_t row) {
+            renderBlockRow(shader, camera, settings, block, int(row) * block, frame);
+            const std::size_t done = raysDone += raysPerRow;
+            if (options.progress && !options.progress(done, totalRays)) throw Interrupted();
+        },
+        options.threads);
     return frame;
 }
 

@@ -1,6 +1,6 @@
 #include "scene/camera.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "shaders/sampling.h"
 
 #include <glm/geometric.hpp>

@@ -10,7 +10,7 @@
 #include <glm/vec2.hpp>
 #include <string>
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/triangle_mesh.h"
 
 namespace vkray {

@@ -1,6 +1,5 @@
 #include "scene/mesh_file.h"
 
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -16,8 +15,9 @@
 #include <optional>
 #include <system_error>
 
-#include "scene/error.h"
-#include "scene/file_loc.h"
+#include "util/error.h"
+#include "util/file_loc.h"
+#include "util/files.h"
 #include "scene/scene.h"
 
 namespace vkray {
@@ -198,30 +198,19 @@ void requireEnd(WordScanner& scanner, const std::string& after) {
 }
 
 std::string readDataFile(const std::string& path, const char* kind) {
-    const auto cannotRead = [&](int error) {
-        return Error(path + ": error: cannot read " + kind + ": " + std::strerror(error));
-    };
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                         &std::fclose);
-    if (!file) throw cannotRead(errno);
-    struct stat info {};
-    if (::fstat(::fileno(file.get()), &info) != 0) throw cannotRead(errno);
-    if (S_ISDIR(info.st_mode)) throw cannotRead(EISDIR);
-    if (S_ISREG(info.st_mode) && std::uint64_t(info.st_size) > kMaxDataFileBytes)
-        throw Error(path + ": error: the " + kind + " is " + std::to_string(info.st_size) +
-                    " bytes, above vkray's limit of " + std::to_string(kMaxDataFileBytes));
-    std::string text;
-    if (S_ISREG(info.st_mode)) text.reserve(std::size_t(info.st_size));
-    char buffer[1 << 16];
-    std::size_t count = 0;
-    while ((count = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) {
-        if (text.size() + count > kMaxDataFileBytes)  // a pipe or a growing file
-            throw Error(path + ": error: the " + kind + " is larger than vkray's limit of " +
-                        std::to_string(kMaxDataFileBytes) + " bytes");
-        text.append(buffer, count);
+    try {
+        return readFile(path, kMaxDataFileBytes);
+    } catch (const FileReadError& e) {
+        if (e.errorNumber() != 0)
+            throw Error(path + ": error: cannot read " + kind + ": " +
+                        std::strerror(e.errorNumber()));
+        if (e.size() != 0)
+            throw Error(path + ": error: the " + kind + " is " + std::to_string(e.size()) +
+                        " bytes, above vkray's limit of " + std::to_string(kMaxDataFileBytes));
+        // a pipe or a growing file
+        throw Error(path + ": error: the " + kind + " is larger than vkray's limit of " +
+                    std::to_string(kMaxDataFileBytes) + " bytes");
     }
-    if (std::ferror(file.get())) throw cannotRead(errno ? errno : EIO);
-    return text;
 }
 
 }  // namespace

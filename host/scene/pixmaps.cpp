@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "image/image_io.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 namespace vkray {
 

@@ -27,7 +27,7 @@
 #include <glm/geometric.hpp>
 #include <numbers>
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/triangle_mesh.h"
 
 namespace vkray {

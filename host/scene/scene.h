@@ -3,7 +3,7 @@
 // read it; nothing in it depends on how it is rendered.
 #pragma once
 
-#include "scene/file_loc.h"
+#include "util/file_loc.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>

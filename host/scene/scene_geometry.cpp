@@ -10,7 +10,7 @@
 #include <optional>
 #include <utility>
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/pixmaps.h"
 #include "scene/triangle_mesh.h"
 

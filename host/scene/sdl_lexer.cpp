@@ -6,7 +6,7 @@
 #include <system_error>
 #include <utility>
 
-#include "scene/error.h"
+#include "util/error.h"
 
 namespace vkray {
 

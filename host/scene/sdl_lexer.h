@@ -12,7 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "scene/file_loc.h"
+#include "util/file_loc.h"
 #include "scene/sdl_reader.h"
 
 namespace vkray {

@@ -15,7 +15,8 @@
 #include <unordered_map>
 #include <utility>
 
-#include "scene/error.h"
+#include "util/error.h"
+#include "util/files.h"
 #include "scene/sdl_lexer.h"
 
 namespace vkray {
@@ -506,22 +507,12 @@ Scene parseSdl(std::string_view text, const std::string& fileName, const SdlOpti
 
 Scene loadSdlFile(const std::string& path, const SdlOptions& options,
                   std::vector<std::string>* warnings) {
-    const auto cannotRead = [&path](int error) {
-        return Error(path + ": error: cannot read scene file: " + std::strerror(error));
-    };
-    std::error_code ignored;
-    if (std::filesystem::is_directory(path, ignored)) throw cannotRead(EISDIR);
-
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                         &std::fclose);
-    if (!file) throw cannotRead(errno);
     std::string text;
-    char buffer[1 << 16];
-    std::size_t count = 0;
-    while ((count = std::fread(buffer, 1, sizeof buffer, file.get())) > 0)
-        text.append(buffer, count);
-    if (std::ferror(file.get())) throw cannotRead(errno ? errno : EIO);
-
+    try {
+        text = readFile(path);
+    } catch (const FileReadError& e) {
+        throw Error(path + ": error: cannot read scene file: " + std::strerror(e.errorNumber()));
+    }
     Scene scene = parseSdl(text, path, options, warnings);
     scene.path = path;
     return scene;

@@ -1,5 +1,5 @@
 #include "app/options.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <gtest/gtest.h>
 

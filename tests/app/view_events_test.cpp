@@ -1,7 +1,7 @@
 // The --events script: one event a line, and every mistake at its place.
 #include "app/view_events.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // limits (no device needed): which need is refused, and what the message says.
 #include "gpu/device_limits.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <gtest/gtest.h>
 

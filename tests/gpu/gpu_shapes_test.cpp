@@ -4,7 +4,7 @@
 #include "support/gpu_fixture.h"
 
 #include "scene/camera.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 

@@ -3,7 +3,7 @@
 #include "gpu/spirv_cache.h"
 #include "numerics/precision.h"
 #include "shaders/layout.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "support/error_of.h"
 #include "support/gpu_fixture.h"
 

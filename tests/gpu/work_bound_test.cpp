@@ -8,7 +8,7 @@
 #include "support/gpu_fixture.h"
 
 #include "reference/reference_tracer.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "support/error_of.h"
 #include "support/frame_difference.h"
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "image/image_io.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "support/error_of.h"
 
 namespace vkray {

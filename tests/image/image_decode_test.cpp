@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "image/image_io.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "support/error_of.h"
 
 namespace vkray {

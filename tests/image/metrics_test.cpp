@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/error.h"
+#include "util/error.h"
 
 namespace vkray {
 namespace {

@@ -1,7 +1,7 @@
 // Thumbnails and heat maps for the reports.
 #include "image/pictures.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // the metrics computed against it.
 #include "numerics/oracle.h"
 #include "numerics/stress_suite.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/sdl_reader.h"
 
 #include <gtest/gtest.h>

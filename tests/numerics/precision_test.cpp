@@ -8,7 +8,7 @@
 #include "numerics/bounded.h"
 #include "numerics/precision.h"
 #include "reference/reference_tracer.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/sdl_reader.h"
 #include "support/cli_fixture.h"
 #include "support/gpu_fixture.h"

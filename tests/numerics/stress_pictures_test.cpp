@@ -3,7 +3,7 @@
 #include "numerics/stress_pictures.h"
 
 #include "image/image_io.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <gtest/gtest.h>
 

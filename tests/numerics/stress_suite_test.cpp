@@ -9,7 +9,7 @@
 #include "numerics/secondary_check.h"
 #include "numerics/stress_report.h"
 #include "numerics/stress_suite.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "support/gpu_fixture.h"
 #include "numerics/document_check.h"
 

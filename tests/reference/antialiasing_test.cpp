@@ -2,7 +2,7 @@
 // mean colour, the AOVs of sample 0, and the same image for the same seed.
 #include "reference/reference_tracer.h"
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 

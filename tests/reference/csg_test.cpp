@@ -6,7 +6,7 @@
 
 #include "reference/scene_intersector.h"
 #include "reference_test_util.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 #include "reference/reference_tracer.h"
 
 #include "reference/reference_test_util.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <glm/matrix.hpp>
 #include <gtest/gtest.h>

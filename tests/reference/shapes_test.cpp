@@ -6,7 +6,7 @@
 #include "reference/object_intersect.h"
 #include "reference/scene_intersector.h"
 #include "reference/reference_test_util.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #include "scene/camera.h"
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "scene/triangle_mesh.h"
 #include "scene/sdl_reader.h"

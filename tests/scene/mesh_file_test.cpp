@@ -15,7 +15,7 @@
 #include <functional>
 #include <string>
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "support/corpus.h"
 #include "support/error_of.h"
 #include "support/scene_checks.h"

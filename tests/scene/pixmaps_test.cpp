@@ -12,7 +12,7 @@
 #include <string>
 
 #include "image/image_io.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 #include "support/error_of.h"

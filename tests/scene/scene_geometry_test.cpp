@@ -12,7 +12,7 @@
 #include <numbers>
 #include <string>
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/triangle_mesh.h"
 #include "support/corpus.h"
 #include "support/error_of.h"

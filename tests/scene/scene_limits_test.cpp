@@ -11,7 +11,7 @@
 #include <string>
 
 #include "scene/camera.h"
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/mesh_file.h"
 #include "scene/sdl_reader.h"
 #include "support/error_of.h"

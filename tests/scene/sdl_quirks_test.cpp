@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "scene/mesh_file.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_lexer.h"

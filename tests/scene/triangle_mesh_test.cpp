@@ -14,7 +14,7 @@
 #include <set>
 #include <string>
 
-#include "scene/error.h"
+#include "util/error.h"
 #include "support/corpus.h"
 #include "support/error_of.h"
 

@@ -2,7 +2,7 @@
 // what a user is told; "(no error)" when it throws none.
 #pragma once
 
-#include "scene/error.h"
+#include "util/error.h"
 
 #include <functional>
 #include <string>

@@ -1,4 +1,4 @@
-#include "scene/file_loc.h"
+#include "util/file_loc.h"
 
 #include <filesystem>
 
