@@ -3,7 +3,7 @@
 // Built only when CMake finds Embree (Debian's libembree-dev).
 #pragma once
 
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "scene/scene.h"
 
 #include <memory>

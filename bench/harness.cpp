@@ -18,7 +18,7 @@
 #include "gpu/context.h"
 #include "gpu/gpu_tracer.h"
 #include "reference/reference_tracer.h"
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "util/error.h"
 #include "util/stopwatch.h"
 #include "scene/scene_geometry.h"

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "util/error.h"
 #include "scene/sdl_reader.h"
 

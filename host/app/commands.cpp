@@ -17,9 +17,9 @@
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "util/error.h"
-#include "scene/render_progress.h"
+#include "render/render_progress.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 

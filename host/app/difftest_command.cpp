@@ -9,7 +9,7 @@
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "util/error.h"
 #include "util/stopwatch.h"
 #include "scene/scene_geometry.h"

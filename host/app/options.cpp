@@ -1,6 +1,6 @@
 #include "app/options.h"
 
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "util/error.h"
 
 #include <charconv>

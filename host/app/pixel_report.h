@@ -3,7 +3,7 @@
 #pragma once
 
 #include "image/pixel_trace.h"
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "scene/scene.h"
 
 #include <string>

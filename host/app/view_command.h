@@ -6,7 +6,7 @@
 #pragma once
 
 #include "app/options.h"
-#include "scene/camera.h"
+#include "render/camera.h"
 
 #include <iosfwd>
 #include <string>

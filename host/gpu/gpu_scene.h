@@ -5,7 +5,7 @@
 #pragma once
 
 #include "gpu/shader_variant.h"
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "scene/scene.h"
 #include "shaders/layout.h"
 

@@ -10,11 +10,11 @@
 #include "image/pixel_trace.h"
 #include "image/stress_sample.h"
 #include "numerics/precision.h"
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "util/error.h"
-#include "scene/render_progress.h"
+#include "render/render_progress.h"
 #include "scene/scene.h"
-#include "scene/tile_schedule.h"
+#include "render/tile_schedule.h"
 
 #include <cstddef>
 #include <cstdint>

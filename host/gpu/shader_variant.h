@@ -4,7 +4,7 @@
 // keep the dead code in the SPIR-V that lavapipe JIT-compiles every run).
 #pragma once
 
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "scene/scene.h"
 
 #include <array>

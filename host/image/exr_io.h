@@ -54,7 +54,7 @@ ExrImage exrFromImage(const Image& image);
 // Every AOV of a frame in one image: R, G, B (linear, unclamped), Z (the
 // distance along the pixel's ray, +inf on a miss), N.X, N.Y, N.Z (the world
 // normal, 0 on a miss), id (kExrIdChannel) and P.X, P.Y, P.Z, the world hit
-// point (`hitPoints`, one per pixel; scene/camera.h hitPoints()).
+// point (`hitPoints`, one per pixel; render/camera.h hitPoints()).
 ExrImage aovExr(const Frame& frame, const std::vector<glm::vec3>& hitPoints);
 
 }  // namespace vkray

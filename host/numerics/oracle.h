@@ -19,7 +19,7 @@
 #pragma once
 
 #include "numerics/exact_shapes.h"
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "scene/scene.h"
 
 #include <glm/vec3.hpp>

@@ -15,7 +15,7 @@
 //           (gpu/gpu_tracer.h refuses it, naming the device, where absent).
 #pragma once
 
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "scene/scene.h"
 
 #include <string>

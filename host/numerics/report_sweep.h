@@ -7,7 +7,7 @@
 #include "numerics/precision.h"
 #include "image/pictures.h"
 #include "numerics/report_writer.h"
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "scene/scene.h"
 
 #include <cstddef>

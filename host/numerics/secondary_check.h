@@ -27,7 +27,7 @@
 #include "image/stress_sample.h"
 #include "numerics/oracle.h"
 #include "numerics/precision.h"
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "scene/scene.h"
 
 #include <cstddef>

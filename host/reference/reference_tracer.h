@@ -5,8 +5,8 @@
 
 #include "image/frame.h"
 #include "image/pixel_trace.h"
-#include "scene/camera.h"
-#include "scene/render_progress.h"
+#include "render/camera.h"
+#include "render/render_progress.h"
 #include "scene/scene.h"
 
 namespace vkray::reference {

@@ -5,7 +5,7 @@
 // reflection, textures), and a whole frame for determinism of --seed.
 #include "support/gpu_fixture.h"
 
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 

@@ -3,7 +3,7 @@
 // look point, so a chosen ray can be traced on the GPU.
 #include "support/gpu_fixture.h"
 
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"

@@ -2,7 +2,7 @@
 // from the eye through the look point, so a chosen ray can be traced on the GPU.
 #include "support/gpu_fixture.h"
 
-#include "scene/camera.h"
+#include "render/camera.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>

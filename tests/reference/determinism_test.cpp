@@ -14,7 +14,7 @@
 
 #include "image/image_io.h"
 #include "reference/reference_tracer.h"
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "scene/sdl_reader.h"
 
 #ifndef VKRAY_SOURCE_DIR

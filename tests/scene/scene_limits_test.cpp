@@ -10,7 +10,7 @@
 #include <glm/mat4x4.hpp>
 #include <string>
 
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "util/error.h"
 #include "scene/mesh_file.h"
 #include "scene/sdl_reader.h"

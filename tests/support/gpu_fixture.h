@@ -5,7 +5,7 @@
 
 #include "gpu/context.h"
 #include "gpu/gpu_tracer.h"
-#include "scene/camera.h"
+#include "render/camera.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 #include "support/corpus.h"

@@ -10,7 +10,7 @@
 #include <set>
 #include <utility>
 
-#include "scene/camera.h"
+#include "render/camera.h"
 
 namespace vkray {
 namespace {
