@@ -14,6 +14,7 @@
 #include "gpu/gpu_tracer.h"
 #include "gpu/shader_variant.h"
 #include "gpu/spirv_cache.h"
+#include "image/aov_images.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"

@@ -6,6 +6,7 @@
 #include "gpu/context.h"
 #include "gpu/gpu_tracer.h"
 #include "gpu/shader_variant.h"
+#include "image/aov_images.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"

@@ -2,6 +2,7 @@
 
 #include "gpu/context_impl.h"
 #include "gpu/spirv_cache.h"
+#include "image/stb_codecs.h"
 #include "util/error.h"
 #include "shaders/layout.h"
 

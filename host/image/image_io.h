@@ -1,36 +1,17 @@
-// Reading and writing images: PNG (8-bit sRGB-less, values clamped to [0,1]
-// and rounded) through stb, PFM (float, lossless) and OpenEXR (float,
-// lossless, multi-layer: image/exr_io.h) for AOVs. Every write
+// Reading and writing image files, the format chosen by the extension: PNG
+// (8-bit sRGB-less, values clamped to [0,1] and rounded) through stb
+// (image/stb_codecs.h), PFM (float, lossless: image/pfm.h) and OpenEXR
+// (float, lossless, multi-layer: image/exr_io.h). Every write
 // goes to a temporary file in the destination folder and is renamed into
 // place, so a failed run never leaves a partial file.
 #pragma once
 
-#include "image/frame.h"
+#include "image/image.h"
 #include "util/files.h"
 
-#include <glm/vec3.hpp>
-
 #include <string>
-#include <vector>
 
 namespace vkray {
-
-// A float image with 1 or 3 channels, row 0 at the top.
-struct Image {
-    int width = 0;
-    int height = 0;
-    int channels = 0;
-    std::vector<float> pixels;  // width * height * channels, interleaved
-};
-
-Image colorImage(const Frame& frame);   // 3 channels: the colour, unclamped
-Image depthImage(const Frame& frame);   // 1 channel: depth (+inf on a miss)
-Image normalImage(const Frame& frame);  // 3 channels: world normal
-Image idImage(const Frame& frame);      // 1 channel: object id as float (-1 = background)
-
-// A colour channel as a PNG stores it: clamped to [0,1], times 255, rounded
-// (NaN: 0). `vkray view` converts on the device to these very bytes.
-unsigned char pngByte(float value);
 
 // By extension: .png (3 channels written as RGB8; 1 channel as grey), .pfm
 // (PF for 3 channels, Pf for 1; little-endian, bottom-to-top rows as the
@@ -63,26 +44,8 @@ bool isExrPath(const std::string& path);
 // above kMaxImageSide per side or kMaxImagePixels before decoding them.
 Image decodeImage(const std::string& bytes, const std::string& path);
 
-// Limits for images read (PNG, BMP and PFM alike): they keep a corrupt or hostile
-// header from asking for gigabytes. Renders are at most 16384 per side and 64
-// Mpixels, so everything vkray writes reads back.
-inline constexpr long kMaxImageSide = 1 << 16;
-inline constexpr long long kMaxImagePixels = 64ll << 20;
-
-// --aov TARGET. TARGET ending in .exr: one OpenEXR file with every layer
-// (exr_io.h aovExr(): the colour, depth, normal, id and the world hit
-// points `hitPoints`, one per pixel). Otherwise TARGET is a prefix:
-// TARGET.depth.pfm, TARGET.normal.pfm, TARGET.id.pfm (no hit points).
-void writeAovs(const std::string& target, const Frame& frame,
-               const std::vector<glm::vec3>& hitPoints);
-
-// The files writeAovs writes for `target`, for a "wrote ..." line.
-std::string aovFilesText(const std::string& target);
-
-// writeImage and writeAovs as part of a set of files written together
-// (util/files.h StagedFiles).
+// writeImage as part of a set of files written together (util/files.h
+// StagedFiles).
 void stageImage(StagedFiles& files, const std::string& path, const Image& image);
-void stageAovs(StagedFiles& files, const std::string& target, const Frame& frame,
-               const std::vector<glm::vec3>& hitPoints);
 
 }  // namespace vkray

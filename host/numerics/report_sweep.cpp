@@ -3,6 +3,7 @@
 #include "dist/bytes.h"
 #include "dist/job_hand_out.h"
 #include "gpu/gpu_tracer.h"
+#include "image/aov_images.h"
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"
 #include "util/error.h"

@@ -1,6 +1,7 @@
 #include "numerics/stress_pictures.h"
 
 #include "dist/bytes.h"
+#include "image/aov_images.h"
 #include "image/image_io.h"
 #include "image/pictures.h"
 #include "util/error.h"

@@ -5,6 +5,7 @@
 #include "support/frame_difference.h"
 #include "support/gpu_fixture.h"
 
+#include "image/aov_images.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"

@@ -6,6 +6,7 @@
 // float accuracy.
 #include "support/gpu_fixture.h"
 
+#include "image/aov_images.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"

@@ -2,6 +2,7 @@
 // linear float, OpenEXR's own exrheader listing the layers, and bad files
 // refused with a message naming them.
 #include "image/exr_io.h"
+#include "image/aov_images.h"
 #include "image/image_io.h"
 #include "support/error_of.h"
 

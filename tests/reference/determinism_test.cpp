@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "image/aov_images.h"
 #include "image/image_io.h"
 #include "reference/reference_tracer.h"
 #include "render/camera.h"
