@@ -113,19 +113,56 @@ public:
           warnings_(warnings),
           sceneFolder_(std::filesystem::path(fileName).parent_path()) {}
 
+    // A statement in error is reported and skipped up to the next keyword,
+    // so that one run names every error of the file (up to
+    // kMaxReportedErrors), each at its place; the scene is then refused with
+    // all of them.
     Scene parse() {
-        while (std::optional<Token> word = stream_.next())
-            if (std::optional<SceneObject> object = parseStatement(*word))
-                deliver(std::move(*object), *word);
-        if (!openBooleans_.empty()) {
+        std::vector<std::string> errors;
+        bool skipping = false;
+        for (;;) {
+            try {
+                if (skipping) skipToNextStatement();
+                skipping = false;
+                const std::optional<Token> word = stream_.next();
+                if (!word) break;
+                if (std::optional<SceneObject> object = parseStatement(*word))
+                    deliver(std::move(*object), *word);
+            } catch (const Error& e) {
+                // The same error again: the stream cannot go past it.
+                if (!errors.empty() && errors.back() == e.what()) break;
+                errors.push_back(e.what());
+                if (errors.size() == kMaxReportedErrors) break;
+                skipping = true;
+            }
+        }
+        if (!openBooleans_.empty() && errors.size() < kMaxReportedErrors) {
             const Token& word = openBooleans_.back().word;
-            throwAt(word,
-                    inQuotes(word.text) + " needs two objects after it; the file ends before them");
+            errors.push_back(diagnosticAt(
+                word, "error",
+                inQuotes(word.text) + " needs two objects after it; the file ends before them"));
+        }
+        if (!errors.empty()) {
+            std::string message = errors.front();
+            for (std::size_t i = 1; i < errors.size(); ++i) message += "\n" + errors[i];
+            throw Error(message);
         }
         return std::move(scene_);
     }
 
 private:
+    static constexpr std::size_t kMaxReportedErrors = 20;
+
+    // After an error: drops the tokens up to the next word that starts a
+    // statement (a keyword or a shape).
+    void skipToNextStatement() {
+        const auto& table = keywordTable();
+        while (const Token* following = stream_.peek()) {
+            if (table.count(following->text) != 0 || shapeFor(following->text)) return;
+            stream_.next();
+        }
+    }
+
     // One statement starting at `word`; returns the object it made, if any.
     std::optional<SceneObject> parseStatement(const Token& word);
     void parseSetting(Keyword keyword, const Token& word);

@@ -226,6 +226,16 @@ TEST_F(Cli, MissingMeshNamesItsPlace) {
     expectRenderError("sphere\n mesh missing.3vn\n", "bad.sdl:2:2: error: cannot load mesh 'missing.3vn'");
 }
 
+TEST_F(Cli, EveryErrorOfASceneIsReportedAndNothingIsWritten) {
+    const std::string scene = VKRAY_SOURCE_DIR "/tests/data/three_errors.sdl";
+    RunResult run = vkray("render " + scene + " -o " + path("out.png"));
+    EXPECT_EQ(run.status, 1) << run.output;
+    for (const char* place : {"three_errors.sdl:3:15: error: ", "three_errors.sdl:5:1: error: ",
+                              "three_errors.sdl:6:1: error: "})
+        EXPECT_NE(run.output.find(place), std::string::npos) << place << "\n" << run.output;
+    expectNoOutputs();
+}
+
 TEST_F(Cli, MissingSceneFile) {
     RunResult run = vkray("render " + path("nope.sdl") + " -o " + path("out.png"));
     EXPECT_EQ(run.status, 1);

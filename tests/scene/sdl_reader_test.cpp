@@ -545,5 +545,28 @@ TEST_F(SdlFileTest, MissingFileOrFolderIsAnErrorNamingThePath) {
     }
 }
 
+TEST(SdlReader, EveryErrorOfAFileIsReportedAtItsPlace) {
+    const std::string path = VKRAY_SOURCE_DIR "/tests/data/three_errors.sdl";
+    try {
+        loadSdlFile(path, {});
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  path + ":3:15: error: expected a number after 'translate', found 'x'\n" + path +
+                      ":5:1: error: scale factor 0 makes the transform singular\n" + path +
+                      ":6:1: error: 'pop' without a matching 'push'");
+    }
+}
+
+TEST(SdlReader, AStatementInErrorIsSkippedUpToTheNextKeyword) {
+    // The numbers after the bad one belong to the statement in error: they
+    // are not reported again as stray numbers.
+    EXPECT_EQ(errorOf("translate 1 x 3 4\nsphere\n"),
+              "t.sdl:1:13: error: expected a number after 'translate', found 'x'");
+    EXPECT_EQ(errorOf("pop\npop\n"),
+              "t.sdl:1:1: error: 'pop' without a matching 'push'\n"
+              "t.sdl:2:1: error: 'pop' without a matching 'push'");
+}
+
 }  // namespace
 }  // namespace vkray
