@@ -88,6 +88,11 @@ struct Camera {
 // refused at its place instead of rendering as black or NaN.
 inline constexpr double kMaxSceneMagnitude = 1e18;
 
+// Booleans nest at most this deep (`union union ... A B C`): renderers and
+// the scene's own code walk the tree recursively, and a deeper tree (10 000
+// levels) would overflow the stack. The GPU takes far less (8 spans a list).
+inline constexpr int kMaxCsgDepth = 1000;
+
 // `makePixmap i file`: an image a texture refers to by index.
 struct Pixmap {
     int index = 0;

@@ -85,6 +85,20 @@ NumberStatus parseSdlNumber(std::string_view text, double& value) {
     return NumberStatus::Ok;
 }
 
+std::string inQuotes(const std::string& text) {
+    std::string quoted = "'";
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte >= 0x20 && byte < 0x7f) {
+            quoted += c;
+        } else {
+            static const char kHex[] = "0123456789abcdef";
+            quoted += {'\\', 'x', kHex[byte >> 4], kHex[byte & 15]};
+        }
+    }
+    return quoted + "'";
+}
+
 std::string diagnosticAt(const Token& token, const char* severity, const std::string& message) {
     return formatDiagnostic(token.loc, token.expansion.get(), severity, message);
 }

@@ -38,6 +38,9 @@ NumberStatus parseSdlNumber(std::string_view text, double& value);
 
 // "file:line:col: severity: message" at the token, plus one note per `use`
 // that pasted it.
+// A word as a message quotes it: bytes that are not printable ASCII (a NUL
+// would end the message in a terminal; binary junk garbles it) as \xNN.
+std::string inQuotes(const std::string& text);
 std::string diagnosticAt(const Token& token, const char* severity, const std::string& message);
 [[noreturn]] void throwAt(const Token& token, const std::string& message);
 

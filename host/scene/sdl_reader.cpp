@@ -17,6 +17,7 @@
 
 #include "util/error.h"
 #include "util/files.h"
+#include "scene/scene_builder.h"
 #include "scene/sdl_lexer.h"
 
 namespace vkray {
@@ -81,29 +82,6 @@ bool isNumberToken(const Token& token) {
     return parseSdlNumber(token.text, ignored) == NumberStatus::Ok;
 }
 
-// A word as a message quotes it: bytes that are not printable ASCII (a NUL
-// would end the message in a terminal; binary junk garbles it) as \xNN.
-std::string inQuotes(const std::string& text) {
-    std::string quoted = "'";
-    for (const char c : text) {
-        const auto byte = static_cast<unsigned char>(c);
-        if (byte >= 0x20 && byte < 0x7f) {
-            quoted += c;
-        } else {
-            static const char kHex[] = "0123456789abcdef";
-            quoted += {'\\', 'x', kHex[byte >> 4], kHex[byte & 15]};
-        }
-    }
-    return quoted + "'";
-}
-
-// The current transform: M (object -> world) and M^-1 kept beside it, each
-// composed from exact inverses rather than by inverting M.
-struct Transform {
-    glm::dmat4 worldFromObject{1.0};
-    glm::dmat4 objectFromWorld{1.0};
-};
-
 class SdlParser {
 public:
     SdlParser(std::string_view text, const std::string& fileName, const SdlOptions& options,
@@ -126,8 +104,7 @@ public:
                 skipping = false;
                 const std::optional<Token> word = stream_.next();
                 if (!word) break;
-                if (std::optional<SceneObject> object = parseStatement(*word))
-                    deliver(std::move(*object), *word);
+                parseStatement(*word);
             } catch (const Error& e) {
                 // The same error again: the stream cannot go past it.
                 if (!errors.empty() && errors.back() == e.what()) break;
@@ -136,18 +113,18 @@ public:
                 skipping = true;
             }
         }
-        if (!openBooleans_.empty() && errors.size() < kMaxReportedErrors) {
-            const Token& word = openBooleans_.back().word;
-            errors.push_back(diagnosticAt(
-                word, "error",
-                inQuotes(word.text) + " needs two objects after it; the file ends before them"));
+        std::optional<Scene> scene;
+        try {
+            scene = builder_.finish();
+        } catch (const Error& e) {
+            if (errors.size() < kMaxReportedErrors) errors.push_back(e.what());
         }
         if (!errors.empty()) {
             std::string message = errors.front();
             for (std::size_t i = 1; i < errors.size(); ++i) message += "\n" + errors[i];
             throw Error(message);
         }
-        return std::move(scene_);
+        return std::move(*scene);
     }
 
 private:
@@ -163,12 +140,11 @@ private:
         }
     }
 
-    // One statement starting at `word`; returns the object it made, if any.
-    std::optional<SceneObject> parseStatement(const Token& word);
+    // One statement starting at `word`, told to the builder.
+    void parseStatement(const Token& word);
     void parseSetting(Keyword keyword, const Token& word);
     void parseCamera(const Token& word);
-    SceneObject parseShape(ShapeType type, const Token& word);
-    void deliver(SceneObject object, const Token& word);
+    void parseShape(ShapeType type, const Token& word);
     void skipUnknown(const Token& word);
 
     Token nextArgument(const Token& keyword, const char* what);
@@ -177,63 +153,23 @@ private:
     int readCount(const Token& keyword, const char* what);
     std::string readFileName(const Token& keyword);
 
-    void applyTransform(const Token& word, const glm::dmat4& forward, const glm::dmat4& inverse);
-
     SdlTokenStream stream_;
     SdlOptions options_;
     std::vector<std::string>* warnings_;
     std::filesystem::path sceneFolder_;
-    Scene scene_;
-    Material material_;
-    Transform current_;
-    std::vector<Transform> saved_;  // push / pop
-    // Booleans still waiting for their operands, innermost last. Kept here
-    // rather than on the call stack so that `union union union ...` cannot
-    // overflow it.
-    struct OpenBoolean {
-        SceneObject object;
-        Token word;
-    };
-    std::vector<OpenBoolean> openBooleans_;
+    SceneBuilder builder_;
 };
 
-void SdlParser::applyTransform(const Token& word, const glm::dmat4& forward,
-                               const glm::dmat4& inverse) {
-    Transform next;
-    next.worldFromObject = current_.worldFromObject * forward;  // M <- M * T
-    next.objectFromWorld = inverse * current_.objectFromWorld;  // M^-1 <- T^-1 * M^-1
-    // Both go to the renderers (M^-1 to the GPU in float): an entry beyond
-    // kMaxSceneMagnitude (scale 1e-30: M^-1 holds 1e30) is refused here, at
-    // the statement that made it, not rendered black.
-    for (const glm::dmat4* matrix : {&next.worldFromObject, &next.objectFromWorld}) {
-        for (int column = 0; column < 4; ++column) {
-            for (int row = 0; row < 3; ++row) {
-                const double entry = (*matrix)[column][row];
-                if (std::abs(entry) <= kMaxSceneMagnitude) continue;
-                char value[32];
-                std::snprintf(value, sizeof value, "%.3g", entry);
-                throwAt(word, inQuotes(word.text) + " makes the " +
-                                  (matrix == &next.worldFromObject ? "transform" : "inverse transform") +
-                                  " hold " + value + ", beyond vkray's limit of 1e18 (the GPU computes "
-                                  "in float); use factors and offsets nearer 1 (e.g. scale the whole "
-                                  "scene's units)");
-            }
-        }
-    }
-    current_ = next;
-}
-
-std::optional<SceneObject> SdlParser::parseStatement(const Token& word) {
+void SdlParser::parseStatement(const Token& word) {
     const auto& table = keywordTable();
     if (const auto keyword = table.find(word.text); keyword != table.end()) {
         parseSetting(keyword->second, word);
-        return std::nullopt;
+        return;
     }
     if (const std::optional<ShapeType> type = shapeFor(word.text)) return parseShape(*type, word);
     if (word.text == "}") throwAt(word, "'}' without a matching '{'");
     if (word.text == "{") throwAt(word, "'{' outside a def (only 'def NAME { ... }' has braces)");
     skipUnknown(word);
-    return std::nullopt;
 }
 
 void SdlParser::skipUnknown(const Token& word) {
@@ -264,20 +200,20 @@ void SdlParser::parseSetting(Keyword keyword, const Token& word) {
             light.position = readVec3(word);
             light.color = readVec3(word);
             light.loc = word.loc;
-            scene_.lights.push_back(light);
+            builder_.scene().lights.push_back(light);
             break;
         }
         case Keyword::Background:
-            scene_.background = readVec3(word);
+            builder_.scene().background = readVec3(word);
             break;
         case Keyword::GlobalAmbient:
-            scene_.globalAmbient = readVec3(word);
+            builder_.scene().globalAmbient = readVec3(word);
             break;
         case Keyword::MinReflectivity:
-            scene_.minReflectivity = readNumber(word);
+            builder_.scene().minReflectivity = readNumber(word);
             break;
         case Keyword::MinTransparency:
-            scene_.minTransparency = readNumber(word);
+            builder_.scene().minTransparency = readNumber(word);
             break;
         case Keyword::MaxRecursionDepth: {
             Token where;
@@ -288,13 +224,13 @@ void SdlParser::parseSetting(Keyword keyword, const Token& word) {
                                    inQuotes(where.text) +
                                    " (the GPU follows reflections and refractions with a "
                                    "stack of that depth)");
-            scene_.maxRecursionDepth = int(depth);
+            builder_.scene().maxRecursionDepth = int(depth);
             break;
         }
 
         case Keyword::Translate: {
             const glm::dvec3 d = readVec3(word);
-            applyTransform(word, glm::translate(glm::dmat4(1.0), d),
+            builder_.transform(word, glm::translate(glm::dmat4(1.0), d),
                            glm::translate(glm::dmat4(1.0), -d));
             break;
         }
@@ -307,7 +243,7 @@ void SdlParser::parseSetting(Keyword keyword, const Token& word) {
             const double largest = std::max({std::abs(axis.x), std::abs(axis.y), std::abs(axis.z)});
             const glm::dvec3 unitAxis = glm::normalize(axis / largest);
             const double radians = glm::radians(degrees);
-            applyTransform(word, glm::rotate(glm::dmat4(1.0), radians, unitAxis),
+            builder_.transform(word, glm::rotate(glm::dmat4(1.0), radians, unitAxis),
                            glm::rotate(glm::dmat4(1.0), -radians, unitAxis));
             break;
         }
@@ -315,51 +251,49 @@ void SdlParser::parseSetting(Keyword keyword, const Token& word) {
             const glm::dvec3 s = readVec3(word);
             if (s.x == 0 || s.y == 0 || s.z == 0)
                 throwAt(word, "scale factor 0 makes the transform singular");
-            applyTransform(word, glm::scale(glm::dmat4(1.0), s),
+            builder_.transform(word, glm::scale(glm::dmat4(1.0), s),
                            glm::scale(glm::dmat4(1.0), 1.0 / s));
             break;
         }
         case Keyword::Push:
-            saved_.push_back(current_);
+            builder_.push();
             break;
         case Keyword::Pop:
-            if (saved_.empty()) throwAt(word, "'pop' without a matching 'push'");
-            current_ = saved_.back();
-            saved_.pop_back();
+            builder_.pop(word);
             break;
         case Keyword::IdentityAffine:
-            current_ = Transform{};
+            builder_.identityAffine();
             break;
 
         case Keyword::Ambient:
-            material_.ambient = readVec3(word);
+            builder_.material().ambient = readVec3(word);
             break;
         case Keyword::Diffuse:
-            material_.diffuse = readVec3(word);
+            builder_.material().diffuse = readVec3(word);
             break;
         case Keyword::Specular:
-            material_.specular = readVec3(word);
+            builder_.material().specular = readVec3(word);
             break;
         case Keyword::Emissive:
-            material_.emissive = readVec3(word);
+            builder_.material().emissive = readVec3(word);
             break;
         case Keyword::SpecularExponent:
-            material_.specularExponent = readNumber(word);
+            builder_.material().specularExponent = readNumber(word);
             break;
         case Keyword::Reflectivity:
-            material_.reflectivity = readNumber(word);
+            builder_.material().reflectivity = readNumber(word);
             break;
         case Keyword::Transparency:
-            material_.transparency = readNumber(word);
+            builder_.material().transparency = readNumber(word);
             break;
         case Keyword::SpeedOfLight:
-            material_.speedOfLight = readNumber(word);
+            builder_.material().speedOfLight = readNumber(word);
             break;
         case Keyword::SpecularFraction:
-            material_.specularFraction = readNumber(word);
+            builder_.material().specularFraction = readNumber(word);
             break;
         case Keyword::SurfaceRoughness:
-            material_.surfaceRoughness = readNumber(word);
+            builder_.material().surfaceRoughness = readNumber(word);
             break;
         case Keyword::Texture: {
             Token where;
@@ -375,26 +309,26 @@ void SdlParser::parseSetting(Keyword keyword, const Token& word) {
                         diagnosticAt(word, "warning", message + "; drawn without a texture (as texture 0)"));
                 code = 0;
             }
-            material_.texture = int(code);
-            material_.textureLoc = word.loc;
+            builder_.material().texture = int(code);
+            builder_.material().textureLoc = word.loc;
             break;
         }
         case Keyword::Parameters: {
             const int count = readCount(word, "a parameter count >= 0");
             std::vector<double> parameters;
             for (int i = 0; i < count; ++i) parameters.push_back(readNumber(word));
-            material_.textureParameters = std::move(parameters);
+            builder_.material().textureParameters = std::move(parameters);
             break;
         }
         case Keyword::DefaultMaterials:
-            material_ = Material{};
+            builder_.defaultMaterials();
             break;
         case Keyword::MakePixmap: {
             Pixmap pixmap;
             pixmap.index = readCount(word, "a pixmap number >= 0");
             pixmap.file = readFileName(word);
             pixmap.loc = word.loc;
-            scene_.pixmaps.push_back(std::move(pixmap));
+            builder_.scene().pixmaps.push_back(std::move(pixmap));
             break;
         }
         case Keyword::Camera:
@@ -406,7 +340,7 @@ void SdlParser::parseSetting(Keyword keyword, const Token& word) {
 void SdlParser::parseCamera(const Token& word) {
     // Parts come in any order, each optional; the statement ends at the first
     // word that is not a part. A second `camera` changes only what it names.
-    Camera camera = scene_.camera.value_or(Camera{});
+    Camera camera = builder_.scene().camera.value_or(Camera{});
     while (const Token* part = stream_.peek()) {
         const std::string name = part->text;
         if (name != "eye" && name != "look" && name != "up" && name != "fov") break;
@@ -427,16 +361,13 @@ void SdlParser::parseCamera(const Token& word) {
         }
     }
     camera.loc = word.loc;
-    scene_.camera = camera;
+    builder_.scene().camera = camera;
 }
 
-SceneObject SdlParser::parseShape(ShapeType type, const Token& word) {
+void SdlParser::parseShape(ShapeType type, const Token& word) {
     SceneObject object;
     object.type = type;
     object.loc = word.loc;
-    object.worldFromObject = current_.worldFromObject;
-    object.objectFromWorld = current_.objectFromWorld;
-    object.material = material_;
     switch (type) {
         case ShapeType::Cone:
             object.taper = 0;
@@ -451,31 +382,7 @@ SceneObject SdlParser::parseShape(ShapeType type, const Token& word) {
         default:
             break;
     }
-    return object;
-}
-
-void SdlParser::deliver(SceneObject object, const Token& word) {
-    // A boolean takes the next two objects made, whatever statements come
-    // between them; a finished boolean is itself an object for the one around
-    // it, or for the scene.
-    if (isBoolean(object.type)) {
-        // Every open boolean is one level of the tree it ends up in.
-        if (openBooleans_.size() >= std::size_t(kMaxCsgDepth))
-            throwAt(word, inQuotes(word.text) + " nests booleans " +
-                              std::to_string(kMaxCsgDepth + 1) + " deep, beyond vkray's limit of " +
-                              std::to_string(kMaxCsgDepth) +
-                              "; combine the objects in a balanced tree, or in fewer booleans");
-        openBooleans_.push_back(OpenBoolean{std::move(object), word});
-        return;
-    }
-    while (!openBooleans_.empty()) {
-        SceneObject& open = openBooleans_.back().object;
-        open.operands.push_back(std::move(object));
-        if (open.operands.size() < 2) return;
-        object = std::move(open);
-        openBooleans_.pop_back();
-    }
-    scene_.objects.push_back(std::move(object));
+    builder_.shape(std::move(object), word);
 }
 
 Token SdlParser::nextArgument(const Token& keyword, const char* what) {

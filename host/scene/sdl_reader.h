@@ -23,11 +23,6 @@ struct SdlOptions {
     int maxUseDepth = 64;
 };
 
-// Booleans nest at most this deep (`union union ... A B C`): renderers and
-// the scene's own code walk the tree recursively, and a deeper tree (10 000
-// levels) would overflow the stack. The GPU takes far less (8 spans a list).
-inline constexpr int kMaxCsgDepth = 1000;
-
 // Parses `text` as if read from file `fileName` (used in messages and to
 // resolve mesh/extrude/makePixmap paths). Throws Error with a located message.
 // Warnings (lenient mode) are appended to `warnings` when it is not null,
