@@ -1,12 +1,12 @@
 #include "numerics/oracle.h"
 
 #include "util/error.h"
+#include "util/parallel_for.h"
 #include "util/file_loc.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <thread>
 
 namespace vkray::numerics {
 
@@ -275,16 +275,13 @@ std::vector<OraclePixel> renderOracle(const Scene& scene, const CameraBasis& cam
     const int width = settings.width, height = settings.height;
     std::vector<OraclePixel> pixels(size_t(width) * size_t(height));
     const auto forEachRow = [&](const auto& work) {
-        std::atomic<int> nextRow{0};
-        const auto worker = [&] {
-            for (int y = nextRow++; y < height; y = nextRow++)
+        parallelFor(
+            std::size_t(height),
+            [&](std::size_t row) {
+                const int y = int(row);
                 for (int x = 0; x < width; ++x) work(x, y, pixels[size_t(y) * size_t(width) + size_t(x)]);
-        };
-        const int count = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
-        std::vector<std::thread> pool;
-        for (int i = 1; i < count; ++i) pool.emplace_back(worker);
-        worker();
-        for (std::thread& t : pool) t.join();
+            },
+            threads);
     };
     // The hits.
     forEachRow([&](int x, int y, OraclePixel& p) {

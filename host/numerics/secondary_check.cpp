@@ -1,13 +1,13 @@
 #include "numerics/secondary_check.h"
 
 #include "util/error.h"
+#include "util/parallel_for.h"
 #include "shaders/layout.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <mutex>
-#include <thread>
 
 namespace vkray::numerics {
 
@@ -73,13 +73,13 @@ SecondaryStats checkSecondaryRays(const Scene& scene, const CameraBasis& camera,
     const int lights = int(std::min<size_t>(scene.lights.size(), gpu::STRESS_MAX_LIGHTS));
     std::atomic<size_t> feelerPixels{0}, acne{0}, shadowFlips{0}, shadowEdges{0}, refracted{0},
         exitErrors{0};
-    std::atomic<size_t> next{0};
     std::mutex failedLock;
     std::vector<size_t> failed;
-    const auto worker = [&] {
-        constexpr size_t kChunk = 256;
+    constexpr size_t kChunk = 256;
+    const auto checkChunk = [&](size_t chunk) {
         std::vector<size_t> mine;
-        for (size_t first = next.fetch_add(kChunk); first < oracle.size(); first = next.fetch_add(kChunk)) {
+        {
+            const size_t first = chunk * kChunk;
             for (size_t i = first; i < std::min(first + kChunk, oracle.size()); ++i) {
                 const OraclePixel& o = oracle[i];
                 const StressSample& s = samples[i];
@@ -142,11 +142,7 @@ SecondaryStats checkSecondaryRays(const Scene& scene, const CameraBasis& camera,
         const std::lock_guard<std::mutex> hold(failedLock);
         failed.insert(failed.end(), mine.begin(), mine.end());
     };
-    std::vector<std::thread> pool;
-    const int count = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    for (int k = 1; k < count; ++k) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
+    parallelFor((oracle.size() + kChunk - 1) / kChunk, checkChunk, threads);
     std::sort(failed.begin(), failed.end());
     return {feelerPixels, acne, shadowFlips, shadowEdges, refracted, exitErrors, failed};
 }

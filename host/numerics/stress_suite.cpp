@@ -7,6 +7,7 @@
 #include "numerics/stress_pictures.h"
 #include "reference/scene_intersector.h"
 #include "util/error.h"
+#include "util/parallel_for.h"
 #include "scene/scene_geometry.h"
 
 #include <glm/geometric.hpp>
@@ -19,7 +20,6 @@
 #include <fstream>
 #include <limits>
 #include <ostream>
-#include <thread>
 
 namespace vkray::numerics {
 
@@ -39,10 +39,6 @@ std::string trimmed(const std::string& s) {
     return s.substr(a, s.find_last_not_of(" \t\r") - a + 1);
 }
 
-int threadCount(int threads) {
-    return threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
-}
-
 }  // namespace
 
 // The CPU reference in double: the reference's own intersector on the
@@ -51,9 +47,10 @@ std::vector<StressSample> referenceSamples(const Scene& scene, const CameraBasis
                                            const RenderSettings& settings, int threads) {
     const reference::SceneIntersector intersector(scene);
     std::vector<StressSample> samples(size_t(settings.width) * size_t(settings.height));
-    std::atomic<int> nextRow{0};
-    auto worker = [&] {
-        for (int y = nextRow++; y < settings.height; y = nextRow++) {
+    parallelFor(
+        std::size_t(settings.height),
+        [&](std::size_t row) {
+            const int y = int(row);
             for (int x = 0; x < settings.width; ++x) {
                 const double sx = 2 * (x + 0.5) / settings.width - 1;
                 const double sy = 1 - 2 * (y + 0.5) / settings.height;
@@ -68,12 +65,8 @@ std::vector<StressSample> referenceSamples(const Scene& scene, const CameraBasis
                 s.normal = hit->normal;
                 s.object = hit->object;
             }
-        }
-    };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < threadCount(threads); ++i) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
+        },
+        threads);
     return samples;
 }
 
