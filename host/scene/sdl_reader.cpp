@@ -102,14 +102,13 @@ public:
             try {
                 if (skipping) skipToNextStatement();
                 skipping = false;
-                const std::optional<Token> word = stream_.next();
+                const std::optional<Token> word = nextToken();
                 if (!word) break;
                 parseStatement(*word);
             } catch (const Error& e) {
-                // The same error again: the stream cannot go past it.
-                if (!errors.empty() && errors.back() == e.what()) break;
                 errors.push_back(e.what());
-                if (errors.size() == kMaxReportedErrors) break;
+                // An error of def/use expansion leaves no statement to go on from.
+                if (streamFailed_ || errors.size() == kMaxReportedErrors) break;
                 skipping = true;
             }
         }
@@ -134,9 +133,28 @@ private:
     // statement (a keyword or a shape).
     void skipToNextStatement() {
         const auto& table = keywordTable();
-        while (const Token* following = stream_.peek()) {
+        while (const Token* following = peekToken()) {
             if (table.count(following->text) != 0 || shapeFor(following->text)) return;
-            stream_.next();
+            nextToken();
+        }
+    }
+
+    // The stream's tokens; an error of the stream itself (def/use
+    // expansion) is remembered, as parsing cannot go on after it.
+    std::optional<Token> nextToken() {
+        try {
+            return stream_.next();
+        } catch (const Error&) {
+            streamFailed_ = true;
+            throw;
+        }
+    }
+    const Token* peekToken() {
+        try {
+            return stream_.peek();
+        } catch (const Error&) {
+            streamFailed_ = true;
+            throw;
         }
     }
 
@@ -158,6 +176,7 @@ private:
     std::vector<std::string>* warnings_;
     std::filesystem::path sceneFolder_;
     SceneBuilder builder_;
+    bool streamFailed_ = false;
 };
 
 void SdlParser::parseStatement(const Token& word) {
@@ -181,9 +200,9 @@ void SdlParser::skipUnknown(const Token& word) {
     // Lenient: real files hold words of other SDL dialects, mostly followed
     // by their numbers (`exponent 50`); skip both, say so, go on.
     int skipped = 0;
-    while (const Token* following = stream_.peek()) {
+    while (const Token* following = peekToken()) {
         if (!isNumberToken(*following)) break;
-        stream_.next();
+        nextToken();
         ++skipped;
     }
     const std::string what = isNumber ? "unexpected number " : "unknown keyword ";
@@ -341,10 +360,10 @@ void SdlParser::parseCamera(const Token& word) {
     // Parts come in any order, each optional; the statement ends at the first
     // word that is not a part. A second `camera` changes only what it names.
     Camera camera = builder_.scene().camera.value_or(Camera{});
-    while (const Token* part = stream_.peek()) {
+    while (const Token* part = peekToken()) {
         const std::string name = part->text;
         if (name != "eye" && name != "look" && name != "up" && name != "fov") break;
-        const Token partWord = *stream_.next();
+        const Token partWord = *nextToken();
         if (name == "eye") {
             camera.eye = readVec3(partWord);
         } else if (name == "look") {
@@ -386,7 +405,7 @@ void SdlParser::parseShape(ShapeType type, const Token& word) {
 }
 
 Token SdlParser::nextArgument(const Token& keyword, const char* what) {
-    std::optional<Token> argument = stream_.next();
+    std::optional<Token> argument = nextToken();
     if (!argument)
         throwAt(keyword, inQuotes(keyword.text) + " is missing " + what + " (end of file)");
     return std::move(*argument);
