@@ -1,4 +1,4 @@
-// Precision modes (host/numerics/precision.h, docs/numerics.md).
+// Precision modes (host/gpu/precision.h, docs/numerics.md).
 // VKRAY_PRECISION_NAIVE = 1 selects the textbook formulas inside the shape
 // files (each under `#if VKRAY_PRECISION_NAIVE`, the robust remedy named in
 // the `#else` branch) and the textbook's fixed epsilon below. The default,

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "gpu/shader_variant.h"
-#include "numerics/precision.h"
+#include "gpu/precision.h"
 #include "scene/scene.h"
 
 #include <string>

@@ -3,7 +3,7 @@
 // name the flag, and combinations are checked after parsing.
 #pragma once
 
-#include "numerics/precision.h"
+#include "gpu/precision.h"
 
 #include <glm/vec3.hpp>
 
@@ -57,7 +57,7 @@ struct Options {
     std::string screenshotPath;  // --screenshot FILE: with --frames, the last frame saved there
     std::string eventsPath;      // --events FILE: input replayed (app/view_events.h)
 
-    // render, pixel: --precision naive|robust|fp64 (numerics/precision.h)
+    // render, pixel: --precision naive|robust|fp64 (gpu/precision.h)
     Precision precision = Precision::Robust;
     bool precisionGiven = false;
 

@@ -8,7 +8,7 @@
 // reference (docs/numerics.md, "Envelope").
 #pragma once
 
-#include "numerics/precision.h"
+#include "gpu/precision.h"
 
 #include <cstdint>
 #include <string>

@@ -5,10 +5,10 @@
 #include "gpu/gpu_scene.h"
 #include "gpu/shader_variant.h"
 #include "util/error.h"
+#include "util/stopwatch.h"
 #include "shaders/layout.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -30,12 +30,6 @@ struct Pipeline {
 };
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // CPU time of the whole process, lavapipe's worker threads included: on a
 // machine shared with other work it stays about the work done.
@@ -474,7 +468,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     GpuRenderStats local;
     GpuRenderStats& st = stats ? *stats : local;
 
-    const auto setupStart = Clock::now();
+    const Stopwatch setup;
     if (settings.spp < 1 || settings.spp > kMaxSpp)
         throw Error("render: samples per pixel must be from 1 to " + std::to_string(kMaxSpp));
     const int samples = sampleEnd(settings) - settings.firstSample;  // traced per pixel
@@ -504,11 +498,11 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
                                  deviceLimits(context_.device()));
     TracePass pass(context_.impl(), pipeline, features, features.doubles, scene,
                    camera, settings, tile);
-    st.setupSeconds = secondsSince(setupStart) - st.shader.seconds;
+    st.setupSeconds = setup.seconds() - st.shader.seconds;
 
     Frame frame(settings.width, settings.height);
     if (stressSamples) stressSamples->assign(frame.pixelCount(), StressSample{});
-    const auto renderStart = Clock::now();
+    const Stopwatch rendering;
     const double renderCpuStart = processCpuSeconds();
     st.tiles = 0;
     st.dispatches = 0;
@@ -552,7 +546,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
         }
         tiles.finished(*given, frame);
     }
-    st.renderSeconds = secondsSince(renderStart);
+    st.renderSeconds = rendering.seconds();
     st.renderCpuSeconds = processCpuSeconds() - renderCpuStart;
     return frame;
 } catch (const vk::SystemError& failure) {
@@ -597,7 +591,7 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
     trace.y = y;
     trace.digits = 9;  // the debug record and shading are float
     trace.geometryDigits = sample.inDouble ? 17 : 9;
-    // Back from the mode's camera-relative world (numerics/precision.h) to the scene's.
+    // Back from the mode's camera-relative world (gpu/precision.h) to the scene's.
     const glm::dvec3 shift = originalCamera.eye - camera.eye;
     trace.rayOrigin = toDvec3(header.rayOrigin) + shift;
     trace.rayDirection = toDvec3(header.rayDirection);

@@ -9,7 +9,7 @@
 #include "image/frame.h"
 #include "image/pixel_trace.h"
 #include "image/stress_sample.h"
-#include "numerics/precision.h"
+#include "gpu/precision.h"
 #include "render/camera.h"
 #include "util/error.h"
 #include "render/render_progress.h"
@@ -31,7 +31,7 @@ struct GpuRenderOptions {
     bool allFeatures = false;  // compile every shape in, whatever the scene uses
     int tileSize = 256;        // pixels per tile side (rounded to a multiple of the block)
     Defines userDefines;       // -D NAME=VALUE, after the variant's own
-    // numerics/precision.h: the mode's defines and host-side scene preparation.
+    // gpu/precision.h: the mode's defines and host-side scene preparation.
     Precision precision = Precision::Robust;
     // trace.comp's workgroup size; 0: layout.h's WORKGROUP_X x WORKGROUP_Y.
     // Other shapes are for benchmarks (vkray_bench --workgroup).

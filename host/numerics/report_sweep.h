@@ -4,7 +4,7 @@
 // pixel, block 1) of the same size.
 #pragma once
 
-#include "numerics/precision.h"
+#include "gpu/precision.h"
 #include "image/pictures.h"
 #include "numerics/report_writer.h"
 #include "render/camera.h"

@@ -26,7 +26,7 @@
 
 #include "image/stress_sample.h"
 #include "numerics/oracle.h"
-#include "numerics/precision.h"
+#include "gpu/precision.h"
 #include "render/camera.h"
 #include "scene/scene.h"
 

@@ -1,7 +1,7 @@
 #include "gpu/shader_compiler.h"
 #include "gpu/shader_variant.h"
 #include "gpu/spirv_cache.h"
-#include "numerics/precision.h"
+#include "gpu/precision.h"
 #include "shaders/layout.h"
 #include "util/error.h"
 #include "support/error_of.h"

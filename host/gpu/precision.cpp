@@ -1,4 +1,4 @@
-#include "numerics/precision.h"
+#include "gpu/precision.h"
 
 #include "util/error.h"
 

@@ -6,7 +6,7 @@
 #include "gpu/shader_compiler.h"
 #include "gpu/shader_variant.h"
 #include "numerics/bounded.h"
-#include "numerics/precision.h"
+#include "gpu/precision.h"
 #include "reference/reference_tracer.h"
 #include "util/error.h"
 #include "scene/sdl_reader.h"
