@@ -10,6 +10,7 @@
 //   LP_NUM_THREADS=2 build/vkray_bench [--size WxH] [--scenes a,b,...] ...
 // (--help lists the options and scenes). Not a test: built with
 // -DVKRAY_BENCHMARKS=ON; Embree only where CMake finds it.
+#include "bench/bench_options.h"
 #include "bench/bench_scenes.h"
 #include "bench/fma_peak.h"
 #if VKRAY_HAVE_EMBREE
@@ -69,91 +70,44 @@ std::vector<BenchScene> knownScenes() {
 const char* kDefaultScenes =
     "spheres1,spheres10,spheres16,spheres256,spheres1k,spheres10k,spheres100k,castle,mesh";
 
-struct Options {
+// The options, with the scenes resolved to what the harness traces.
+struct Options : bench::BenchOptions {
     std::vector<BenchScene> scenes;
-    int width = 1920, height = 1080;
-    int repeat = 2;
-    int threads = 2;
-    int tile = gpu::GpuRenderOptions{}.tileSize;
-    std::string shaderDirectory = VKRAY_BINARY_DIR "/shaders";
-    int allWidth = 0, allHeight = 0;  // the all-features variant's image; 0: --size
-    bool all = true, cpu = true, embree = true, fma = true;
-    bool shaded = false;  // keep lights and secondary rays
-    bool experiments = false, onlyExperiments = false;  // the tuning table (BENCHMARKS.md)
 };
 
-[[noreturn]] void usage(const std::string& message, int status = 1) {
-    std::string names;
-    for (const BenchScene& scene : knownScenes()) names += (names.empty() ? "" : ", ") + scene.name;
-    std::fprintf(status ? stderr : stdout,
-                 "%s%susage: vkray_bench [--scenes a,b,...] [--scene FILE.sdl] [--size WxH] "
-                 "[--repeat N] [--threads N] [--tile N] [--shader-dir DIR] [--all-size WxH] "
-                 "[--shaded] [--no-all] [--no-cpu] [--no-embree] [--no-fma] [--experiments] "
-                 "[--only-experiments]\n"
-                 "scenes: %s\ndefault list: %s\n"
-                 "--shaded keeps the scenes' lights and secondary rays (default: primary rays "
-                 "only, the same rays for every engine)\n"
-                 "--experiments adds the tuning table: workgroup shapes, tile sizes and order, "
-                 "an early-out (--only-experiments: that table alone)\n",
-                 message.empty() ? "" : "vkray_bench: ", message.empty() ? "" : (message + "\n").c_str(),
-                 names.c_str(), kDefaultScenes);
-    std::exit(status);
-}
-
+// Prints the usage and exits 0 for --help; exits 1 with the error on bad usage.
 Options parse(int argc, char** argv) {
-    Options o;
-    std::string names = kDefaultScenes;
-    std::vector<std::string> files;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        const auto value = [&]() -> std::string {
-            if (i + 1 >= argc) usage(arg + " expects a value");
-            return argv[++i];
-        };
-        if (arg == "--help" || arg == "-h") usage("", 0);
-        else if (arg == "--scenes") names = value();
-        else if (arg == "--scene") files.push_back(value());
-        else if (arg == "--size") {
-            if (std::sscanf(value().c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 1 ||
-                o.height < 1 || o.width > 16384 || o.height > 16384)
-                usage("--size expects WxH, each side 1 .. 16384");
-        } else if (arg == "--repeat") o.repeat = std::clamp(std::atoi(value().c_str()), 1, 100);
-        else if (arg == "--threads") o.threads = std::clamp(std::atoi(value().c_str()), 1, 1024);
-        else if (arg == "--shader-dir") o.shaderDirectory = value();
-        else if (arg == "--tile") o.tile = std::clamp(std::atoi(value().c_str()), 8, 16384);
-        else if (arg == "--all-size") {
-            if (std::sscanf(value().c_str(), "%dx%d", &o.allWidth, &o.allHeight) != 2 ||
-                o.allWidth < 1 || o.allHeight < 1 || o.allWidth > 16384 || o.allHeight > 16384)
-                usage("--all-size expects WxH, each side 1 .. 16384");
-        } else if (arg == "--no-all") o.all = false;
-        else if (arg == "--no-cpu") o.cpu = false;
-        else if (arg == "--no-embree") o.embree = false;
-        else if (arg == "--no-fma") o.fma = false;
-        else if (arg == "--shaded") o.shaded = true;
-        else if (arg == "--experiments") o.experiments = true;
-        else if (arg == "--only-experiments") o.experiments = o.onlyExperiments = true;
-        else usage("unknown option " + arg);
-    }
-    if (o.allWidth == 0) {
-        o.allWidth = o.width;
-        o.allHeight = o.height;
-    }
-    if (!files.empty() && names == kDefaultScenes) names.clear();
-    std::istringstream list(names);
     const std::vector<BenchScene> known = knownScenes();
-    for (std::string name; std::getline(list, name, ',');) {
-        if (name.empty()) continue;
-        auto it = std::find_if(known.begin(), known.end(), [&](const auto& s) { return s.name == name; });
-        if (it == known.end()) usage("unknown scene '" + name + "'");
+    std::vector<std::string> names;
+    for (const BenchScene& scene : known) names.push_back(scene.name);
+    bench::BenchOptions defaults;
+    std::istringstream list(kDefaultScenes);
+    for (std::string name; std::getline(list, name, ',');) defaults.sceneNames.push_back(name);
+    defaults.tile = gpu::GpuRenderOptions{}.tileSize;
+    defaults.shaderDirectory = VKRAY_BINARY_DIR "/shaders";
+    Options o;
+    try {
+        static_cast<bench::BenchOptions&>(o) =
+            bench::parseBenchOptions(std::vector<std::string>(argv + 1, argv + argc), defaults, names);
+    } catch (const Error& e) {
+        std::fprintf(stderr, "vkray_bench: error: %s; try `vkray_bench --help`\n", e.what());
+        std::exit(1);
+    }
+    if (!o.helpText.empty()) {
+        std::fputs(o.helpText.c_str(), stdout);
+        std::exit(0);
+    }
+    for (const std::string& name : o.sceneNames) {
         const char* corpus = std::getenv("VKRAY_SDL_CORPUS");
         if (name == "castle" && (corpus == nullptr || *corpus == '\0')) {
             std::fprintf(stderr, "vkray_bench: castle skipped: VKRAY_SDL_CORPUS does not name the "
                                  "corpus folder that holds castle.dat\n");
             continue;
         }
-        o.scenes.push_back(*it);
+        o.scenes.push_back(*std::find_if(known.begin(), known.end(),
+                                         [&](const BenchScene& s) { return s.name == name; }));
     }
-    for (const std::string& file : files)
+    for (const std::string& file : o.sceneFiles)
         o.scenes.push_back({file, file, [file] { return bench::sdlScene(file); }});
     return o;
 }

@@ -17,6 +17,8 @@ packages=(
   dpkg-dev file  # cpack -G DEB: dpkg-shlibdeps finds the .deb's library dependencies
   libglfw3-dev  # vkray view: the window and its Vulkan surface
   xvfb xauth libx11-dev  # vkray view's tests: a virtual X server, and Xlib to look into it
+  libcli11-dev  # the command lines of vkray and vkray_bench: subcommands, ranges, generated --help
+  nlohmann-json3-dev  # the JSON that reports write, and that the tests read back
 )
 
 missing=()

@@ -1,19 +1,21 @@
-// The commands of the vkray binary. Library errors arrive as exceptions; this
-// layer alone prints them and chooses the exit status.
+// What the commands of the vkray binary share: finding the shaders, loading
+// the scene, the camera, the GPU session, and how an error is printed. Each
+// command is in its own file (app/*_command.h); main.cpp dispatches to them
+// and alone chooses the exit status.
 #pragma once
 
 #include "app/options.h"
+#include "gpu/context.h"
 #include "gpu/gpu_tracer.h"
 #include "scene/scene.h"
 
+#include <chrono>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace vkray {
-
-// Exit status: 0 success, 1 error (printed to err), 2 images beyond tolerance.
-int runCommand(const Options& options, std::ostream& out, std::ostream& err);
 
 // The GLSL folder: --shader-dir, else shaders/ next to the binary, else the
 // installed <binary dir>/../share/vkray/shaders. Throws Error when it has no
@@ -34,8 +36,25 @@ void requireWritableFolder(const std::string& path, const char* what);
 // An Error as vkray prints it: "file:line:col: error: ..." or "vkray: error: ...".
 void printError(const Error& error, std::ostream& err);
 
-// Parses argv and runs; catches every exception into a message and status 1.
-int vkrayMain(int argc, char** argv);
+// The GPU side of a command: one Vulkan context and tracer, made on first
+// use and kept (across the re-renders of --watch).
+struct GpuSession {
+    std::unique_ptr<gpu::Context> context;
+    std::unique_ptr<gpu::GpuTracer> tracer;
+
+    // Prints the device chosen when it first makes them.
+    gpu::GpuTracer& tracerFor(const Options& options, std::ostream& out);
+    // --validation: throws when the layer printed any message.
+    void requireNoValidationMessages(const Options& options) const;
+};
+
+// The shader line of a GPU command's report; writes the SPIR-V for --dump-spirv.
+void reportShader(const gpu::GpuRenderStats& stats, const Options& options, std::ostream& out);
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point start);
+// `value` with `digits` digits after the point, as the reports print times.
+std::string fixedDigits(double value, int digits);
 
 // --check's default tolerance: GPU float against CPU double. At most this
 // percent of pixels may differ by more than kCheckFailThreshold (silhouette

@@ -3,12 +3,13 @@
 #include "render/camera.h"
 #include "util/error.h"
 
-#include <charconv>
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <functional>
 #include <map>
 
 namespace vkray {
@@ -34,15 +35,6 @@ int parseInt(const std::string& flag, const std::string& text, int lo, int hi) {
     return int(value);
 }
 
-// --seed: any 32-bit unsigned value.
-std::uint32_t parseSeed(const std::string& text) {
-    unsigned long long value = 0;
-    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || end != text.data() + text.size() || value > 0xffffffffull)
-        throw Error("--seed: '" + text + "' is not a whole number from 0 to 4294967295");
-    return std::uint32_t(value);
-}
-
 glm::dvec3 parseVector(const std::string& flag, const std::string& text) {
     glm::dvec3 v;
     size_t start = 0;
@@ -59,7 +51,8 @@ glm::dvec3 parseVector(const std::string& flag, const std::string& text) {
 // --size WxH
 void parseSize(const std::string& text, Options& o) {
     size_t x = text.find('x');
-    if (x == std::string::npos) throw Error("--size: expected WIDTHxHEIGHT, e.g. 640x480, found '" + text + "'");
+    if (x == std::string::npos)
+        throw Error("--size: expected WIDTHxHEIGHT, e.g. 640x480, found '" + text + "'");
     o.width = parseInt("--size", text.substr(0, x), 1, kMaxRenderSide);
     o.height = parseInt("--size", text.substr(x + 1), 1, kMaxRenderSide);
     if ((long long)o.width * o.height > kMaxRenderPixels)
@@ -68,320 +61,679 @@ void parseSize(const std::string& text, Options& o) {
                     "; render a smaller image");
 }
 
-struct Flag {
-    bool takesValue;
-    std::function<void(Options&, const std::string&)> apply;
-};
-
-const std::map<std::string, Flag>& renderFlags() {
-    static const std::map<std::string, Flag> flags = {
-        {"-o", {true, [](Options& o, const std::string& v) { o.outputPath = v; }}},
-        {"--output", {true, [](Options& o, const std::string& v) { o.outputPath = v; }}},
-        {"--size", {true, [](Options& o, const std::string& v) { parseSize(v, o); }}},
-        {"--device", {true, [](Options& o, const std::string& v) { o.device = parseInt("--device", v, 0, 1023); }}},
-        {"--block", {true, [](Options& o, const std::string& v) { o.block = parseInt("--block", v, 1, 1024); }}},
-        {"--spp", {true, [](Options& o, const std::string& v) { o.spp = parseInt("--spp", v, 1, kMaxSpp); }}},
-        {"--seed", {true, [](Options& o, const std::string& v) { o.seed = parseSeed(v); }}},
-        {"--aov", {true, [](Options& o, const std::string& v) { o.aovPrefix = v; }}},
-        {"--cpu", {false, [](Options& o, const std::string&) { o.cpu = true; }}},
-        {"--check", {false, [](Options& o, const std::string&) { o.check = true; }}},
-        {"--lenient", {false, [](Options& o, const std::string&) { o.lenient = true; }}},
-        {"--validation", {false, [](Options& o, const std::string&) { o.validation = true; }}},
-        {"--variant", {true, [](Options& o, const std::string& v) {
-             if (v != "all" && v != "scene")
-                 throw Error("--variant: expected 'all' or 'scene', found '" + v + "'");
-             o.allFeatures = v == "all";
-         }}},
-        {"--threads", {true, [](Options& o, const std::string& v) { o.threads = parseInt("--threads", v, 1, 1024); }}},
-        {"--shader-dir", {true, [](Options& o, const std::string& v) { o.shaderDirectory = v; }}},
-        {"--eye", {true, [](Options& o, const std::string& v) { o.eye = parseVector("--eye", v); }}},
-        {"--look", {true, [](Options& o, const std::string& v) { o.look = parseVector("--look", v); }}},
-        {"--up", {true, [](Options& o, const std::string& v) { o.up = parseVector("--up", v); }}},
-        {"--fov", {true, [](Options& o, const std::string& v) {
-             o.fov = parseNumber("--fov", v);
-             if (!(*o.fov > 0 && *o.fov < 180)) throw Error("--fov: must be between 0 and 180 degrees");
-         }}},
-        {"--dump-spirv", {true, [](Options& o, const std::string& v) { o.dumpSpirvDirectory = v; }}},
-        {"--watch", {false, [](Options& o, const std::string&) { o.watch = true; }}},
-        {"--quiet", {false, [](Options& o, const std::string&) { o.quiet = true; }}},
-        {"--all", {false, [](Options& o, const std::string&) { o.everyVariant = true; }}},
-        {"--precision", {true, [](Options& o, const std::string& v) {
-             o.precision = parsePrecision("--precision", v);
-             o.precisionGiven = true;
-         }}},
-        {"--out", {true, [](Options& o, const std::string& v) { o.outDirectory = v; }}},
-        {"--frames", {true, [](Options& o, const std::string& v) { o.frames = parseInt("--frames", v, 1, 1000000); }}},
-        {"--screenshot", {true, [](Options& o, const std::string& v) { o.screenshotPath = v; }}},
-        {"--events", {true, [](Options& o, const std::string& v) { o.eventsPath = v; }}},
-        {"--scenes", {true, [](Options& o, const std::string& v) { o.difftestScenes = parseInt("--scenes", v, 1, 100000000); }}},
-        {"--cases", {true, [](Options& o, const std::string& v) { o.casesPattern = v; }}},
-        {"--cases-dir", {true, [](Options& o, const std::string& v) { o.casesDirectory = v; }}},
-        {"--diff", {true, [](Options& o, const std::string& v) { o.diffPath = v; }}},
-        {"--fail", {true, [](Options& o, const std::string& v) {
-             o.failThreshold = parseNumber("--fail", v);
-             if (*o.failThreshold < 0) throw Error("--fail: must not be negative");
-         }}},
-        {"--failpercent", {true, [](Options& o, const std::string& v) {
-             o.failPercent = parseNumber("--failpercent", v);
-             if (*o.failPercent < 0 || *o.failPercent > 100) throw Error("--failpercent: must be between 0 and 100");
-         }}},
-    };
-    return flags;
-}
-
 // -D NAME=VALUE (or -DNAME=VALUE; VALUE defaults to 1), as a C compiler takes it.
 void parseDefine(const std::string& text, Options& o) {
     const size_t eq = text.find('=');
     const std::string name = text.substr(0, eq);
     const std::string value = eq == std::string::npos ? "1" : text.substr(eq + 1);
-    const bool identifier =
-        !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
-        std::all_of(name.begin(), name.end(),
-                    [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-    if (!identifier)
-        throw Error("-D: '" + text + "' is not NAME=VALUE with NAME a C identifier");
+    const bool identifier = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
+                            std::all_of(name.begin(), name.end(), [](char c) {
+                                return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                            });
+    if (!identifier) throw Error("-D: '" + text + "' is not NAME=VALUE with NAME a C identifier");
     if (value.find_first_of("\n\r") != std::string::npos)
         throw Error("-D " + name + ": the value must be one line");
     o.defines.emplace_back(name, value);
-}
-
-// Which flags each command takes, besides render's full set.
-bool accepts(Command command, const std::string& flag) {
-    const bool numericsOnly = flag == "--out" || flag == "--cases" || flag == "--cases-dir";
-    const bool viewOnly = flag == "--frames" || flag == "--screenshot" || flag == "--events";
-    switch (command) {
-    case Command::Render: return flag != "--all" && !numericsOnly && !viewOnly;
-    case Command::View:
-        return viewOnly || flag == "--size" || flag == "--device" || flag == "--spp" ||
-               flag == "--seed" || flag == "--lenient" || flag == "--validation" ||
-               flag == "--variant" || flag == "--threads" || flag == "--shader-dir" ||
-               flag == "--eye" || flag == "--look" || flag == "--up" || flag == "--fov" ||
-               flag == "-D" || flag == "--precision" || flag == "--fail";
-    case Command::Pixel:
-        if (viewOnly) return false;
-        return flag != "-o" && flag != "--output" && flag != "--aov" && flag != "--cpu" &&
-               flag != "--check" && flag != "--diff" && flag != "--fail" &&
-               flag != "--failpercent" && flag != "--watch" && flag != "--threads" &&
-               flag != "--all" && flag != "--spp" && flag != "--seed" && !numericsOnly;
-    case Command::Stress:
-        return flag == "--size" || flag == "--device" || flag == "--threads" ||
-               flag == "--shader-dir" || flag == "--precision" || numericsOnly;
-    case Command::Report:
-        return flag == "--size" || flag == "--device" || flag == "--threads" ||
-               flag == "--shader-dir" || flag == "--out" || flag == "--lenient" ||
-               flag == "--precision" ||
-               flag == "--eye" || flag == "--look" || flag == "--up" || flag == "--fov";
-    case Command::Compare: return flag == "--diff" || flag == "--fail" || flag == "--failpercent";
-    case Command::Difftest:
-        return flag == "--scenes" || flag == "--seed" || flag == "--precision" || flag == "--out" ||
-               flag == "--device" || flag == "--threads" || flag == "--shader-dir" ||
-               flag == "--variant";
-    case Command::ShadersCheck: return flag == "--shader-dir" || flag == "--all" || flag == "--precision";
-    case Command::Features:
-        return flag == "--lenient" || flag == "--variant" || flag == "--shader-dir" || flag == "-D" ||
-               flag == "--spp" || flag == "--precision";
-    default: return false;
-    }
 }
 
 int parsePixelCoordinate(const char* what, const std::string& text) {
     return parseInt(std::string("pixel ") + what, text, 0, kMaxRenderSide - 1);
 }
 
+const char* const kShadersExpected = "shaders: expected `vkray shaders check`";
+const char* const kIdsExpected = "--ids: expected two files, A.id.pfm B.id.pfm (or A.exr B.exr)";
+
+// A CLI11 range check in vkray's words: "--spp: 0 is out of range (1 .. 4096)".
+CLI::Validator wholeNumberIn(long long lo, long long hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            long long value = 0;
+            auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+            if (ec != std::errc() || end != text.data() + text.size())
+                return "'" + text + "' is not a whole number";
+            if (value < lo || value > hi)
+                return text + " is out of range (" + std::to_string(lo) + " .. " +
+                       std::to_string(hi) + ")";
+            return "";
+        },
+        "[" + std::to_string(lo) + " .. " + std::to_string(hi) + "]");
+}
+
+// --seed: any 32-bit unsigned value.
+const CLI::Validator kSeed(
+    [](std::string& text) -> std::string {
+        unsigned long long value = 0;
+        auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (ec != std::errc() || end != text.data() + text.size() || value > 0xffffffffull)
+            return "'" + text + "' is not a whole number from 0 to 4294967295";
+        return "";
+    },
+    "[0 .. 4294967295]");
+
+// Every flag of every command: how it is parsed and its default help line.
+// A command takes the flags it names (commandSpecs below), with its own help
+// line where the meaning differs.
+using AddFlag = CLI::Option* (*)(CLI::App&, Options&, const std::string& help);
+struct FlagSpec {
+    const char* name;
+    const char* help;
+    AddFlag add;
+};
+
+template <class Apply>
+CLI::Option* valueFlag(CLI::App& app, const std::string& names, const std::string& help,
+                       const char* typeName, Apply apply) {
+    return app.add_option_function<std::string>(names, apply, help)->type_name(typeName);
+}
+
+const std::vector<FlagSpec>& flagSpecs() {
+    static const std::vector<FlagSpec> specs = {
+        {"-o",
+         "image to write: .png (default: SCENE's name with .png), .pfm, or .exr (linear float, "
+         "unclamped)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("-o,--output", o.outputPath, h)->type_name("FILE");
+         }},
+        {"--size", "image size (default 640x480; each side <= 16384)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return valueFlag(a, "--size", h, "WxH",
+                              [&o](const std::string& v) { parseSize(v, o); });
+         }},
+        {"--device", "Vulkan device index (see `vkray devices`; default: automatic)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--device", o.device, h)
+                 ->type_name("N")
+                 ->check(wholeNumberIn(0, 1023));
+         }},
+        {"--block", "one ray per NxN block, the block filled with its colour",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--block", o.block, h)
+                 ->type_name("N")
+                 ->check(wholeNumberIn(1, 1024));
+         }},
+        {"--spp", "samples per pixel (default 1): stratified, jittered",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--spp", o.spp, h)
+                 ->type_name("N")
+                 ->check(wholeNumberIn(1, kMaxSpp));
+         }},
+        {"--seed", "seed of the sample positions (default 0)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--seed", o.seed, h)->type_name("S")->check(kSeed);
+         }},
+        {"--aov",
+         "also write PREFIX.depth.pfm, PREFIX.normal.pfm, PREFIX.id.pfm; or, given "
+         "NAME.exr, one OpenEXR file: R,G,B  Z  N.X,N.Y,N.Z  id  P.X,P.Y,P.Z",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--aov", o.aovPrefix, h)->type_name("PREFIX|NAME.exr");
+         }},
+        {"--cpu", "render with the CPU reference instead of the GPU",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_flag("--cpu", o.cpu, h);
+         }},
+        {"--check", "render with both and compare (exit 2 beyond tolerance)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_flag("--check", o.check, h);
+         }},
+        {"--lenient", "skip unknown words and unsupported shapes, with warnings",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_flag("--lenient", o.lenient, h);
+         }},
+        {"--validation", "enable the Khronos validation layer; any message fails",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_flag("--validation", o.validation, h);
+         }},
+        {"--variant", "compile every shape in (all), or only the scene's (scene, the default)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return valueFlag(a, "--variant", h, "all|scene", [&o](const std::string& v) {
+                 if (v != "all" && v != "scene")
+                     throw Error("--variant: expected 'all' or 'scene', found '" + v + "'");
+                 o.allFeatures = v == "all";
+             });
+         }},
+        {"--threads", "CPU reference threads (default: all cores)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--threads", o.threads, h)
+                 ->type_name("N")
+                 ->check(wholeNumberIn(1, 1024));
+         }},
+        {"--shader-dir",
+         "GLSL folder (default: shaders/ next to the binary, else ../share/vkray/shaders)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--shader-dir", o.shaderDirectory, h)->type_name("DIR");
+         }},
+        {"--eye", "override the scene's camera: the eye",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return valueFlag(a, "--eye", h, "X,Y,Z",
+                              [&o](const std::string& v) { o.eye = parseVector("--eye", v); });
+         }},
+        {"--look", "override the scene's camera: the point looked at",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return valueFlag(a, "--look", h, "X,Y,Z",
+                              [&o](const std::string& v) { o.look = parseVector("--look", v); });
+         }},
+        {"--up", "override the scene's camera: the up direction",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return valueFlag(a, "--up", h, "X,Y,Z",
+                              [&o](const std::string& v) { o.up = parseVector("--up", v); });
+         }},
+        {"--fov", "override the scene's camera: the vertical field of view, in degrees",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return valueFlag(a, "--fov", h, "DEG", [&o](const std::string& v) {
+                 o.fov = parseNumber("--fov", v);
+                 if (!(*o.fov > 0 && *o.fov < 180))
+                     throw Error("--fov: must be between 0 and 180 degrees");
+             });
+         }},
+        {"-D", "define for the shader compile (repeatable; -DNAME=VALUE too)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a
+                 .add_option_function<std::vector<std::string>>(
+                     "-D",
+                     [&o](const std::vector<std::string>& values) {
+                         for (const std::string& v : values) parseDefine(v, o);
+                     },
+                     h)
+                 ->type_name("NAME=VALUE")
+                 ->allow_extra_args(false)
+                 ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+         }},
+        {"--dump-spirv", "write the SPIR-V of the variant used to DIR",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--dump-spirv", o.dumpSpirvDirectory, h)->type_name("DIR");
+         }},
+        {"--watch", "re-render when the scene, a file it reads or a shader changes",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_flag("--watch", o.watch, h);
+         }},
+        {"--quiet", "no progress display on stderr",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_flag("--quiet", o.quiet, h);
+         }},
+        {"--all", "every variant, not only one per shape",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_flag("--all", o.everyVariant, h);
+         }},
+        {"--precision", "naive, robust (default) or fp64: float care on the GPU (docs/numerics.md)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return valueFlag(a, "--precision", h, "MODE", [&o](const std::string& v) {
+                 o.precision = parsePrecision("--precision", v);
+                 o.precisionGiven = true;
+             });
+         }},
+        {"--out", "where the outputs go",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--out", o.outDirectory, h)->type_name("DIR");
+         }},
+        {"--frames", "quit after N passes of the progression (after the events)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--frames", o.frames, h)
+                 ->type_name("N")
+                 ->check(wholeNumberIn(1, 1000000));
+         }},
+        {"--screenshot", "with --frames: save the last frame there (a .png), as the `s` key would",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--screenshot", o.screenshotPath, h)->type_name("FILE");
+         }},
+        {"--events",
+         "replay input: `key p`, `drag left 100 0`, `wheel 3`, `wait-pass`, `wait-cpu`, "
+         "`wait-reload`, one a line",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--events", o.eventsPath, h)->type_name("FILE");
+         }},
+        {"--scenes", "how many scenes to draw (default 100)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--scenes", o.difftestScenes, h)
+                 ->type_name("N")
+                 ->check(wholeNumberIn(1, 100000000));
+         }},
+        {"--cases", "only the cases whose name contains PATTERN",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--cases", o.casesPattern, h)->type_name("PATTERN");
+         }},
+        {"--cases-dir",
+         "the cases' folder (default scenes/stress next to the binary, else ../share/vkray/stress)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--cases-dir", o.casesDirectory, h)->type_name("DIR");
+         }},
+        {"--diff", "with --check: write a diff image",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--diff", o.diffPath, h)->type_name("FILE");
+         }},
+        {"--fail", "with --check: per-pixel error threshold (idiff --fail)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return valueFlag(a, "--fail", h, "T", [&o](const std::string& v) {
+                 o.failThreshold = parseNumber("--fail", v);
+                 if (*o.failThreshold < 0) throw Error("--fail: must not be negative");
+             });
+         }},
+        {"--failpercent", "with --check: percent of pixels allowed over T (idiff --failpercent)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return valueFlag(a, "--failpercent", h, "P", [&o](const std::string& v) {
+                 o.failPercent = parseNumber("--failpercent", v);
+                 if (*o.failPercent < 0 || *o.failPercent > 100)
+                     throw Error("--failpercent: must be between 0 and 100");
+             });
+         }},
+        {"--ids",
+         "object ids of A and B: .id.pfm files, or .exr files with an id channel (default: "
+         "found beside A and B)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a
+                 .add_option_function<std::vector<std::string>>(
+                     "--ids",
+                     [&o](const std::vector<std::string>& files) {
+                         if (files.size() != 2) throw Error(kIdsExpected);
+                         o.idsA = files.at(0);
+                         o.idsB = files.at(1);
+                     },
+                     h)
+                 ->type_name("IDS_A IDS_B")
+                 ->expected(2);
+         }},
+    };
+    return specs;
+}
+
+CLI::Option* addFlag(CLI::App& app, Options& o, const std::string& name,
+                     const std::string& help = {}) {
+    for (const FlagSpec& spec : flagSpecs())
+        if (name == spec.name)
+            return spec.add(app, o, help.empty() ? std::string(spec.help) : help);
+    throw Error("internal error: no flag " + name);
+}
+
+// A command's flags with their help lines, "" for the default one.
+using FlagList = std::vector<std::pair<const char*, const char*>>;
+
+const FlagList kCameraFlags = {{"--eye", ""}, {"--look", ""}, {"--up", ""}, {"--fov", ""}};
+
+struct CommandSpec {
+    const char* name;  // "shaders check": a subcommand of a subcommand
+    Command command;
+    const char* help;
+    std::vector<const char*> positionals;  // their names, each a string
+    const char* positionalError;           // too few or too many of them
+    FlagList flags;
+    const char* footer = "";
+};
+
+const char* const kModeOnlyHelp =
+    "naive, robust or fp64: only that mode (default: all three; docs/numerics.md)";
+
+const std::vector<CommandSpec>& commandSpecs() {
+    static const std::vector<CommandSpec> specs = [] {
+        std::vector<CommandSpec> s;
+        FlagList render = {{"-o", ""},       {"--size", ""}, {"--device", ""},
+                           {"--block", ""},  {"--spp", ""},  {"--seed", ""},
+                           {"--aov", ""},    {"--cpu", ""},  {"--check", ""},
+                           {"--diff", ""},   {"--fail", ""}, {"--failpercent", ""},
+                           {"--lenient", ""}};
+        render.insert(render.end(), kCameraFlags.begin(), kCameraFlags.end());
+        render.insert(render.end(), {{"--threads", ""},
+                                     {"--shader-dir", ""},
+                                     {"--variant", ""},
+                                     {"--validation", ""},
+                                     {"--watch", ""},
+                                     {"-D", ""},
+                                     {"--dump-spirv", ""},
+                                     {"--quiet", ""},
+                                     {"--precision", ""}});
+        s.push_back(
+            {"render",
+             Command::Render,
+             "render a scene on the GPU (or --cpu)",
+             {"SCENE"},
+             "render: expected one scene file, e.g. `vkray render scenes/default.sdl -o out.png`",
+             render,
+             "Ctrl-C (SIGINT, SIGTERM) stops a render between tiles: nothing is written, "
+             "existing files stay as they were, exit status 130.\n"
+             "exit status: 0 success, 1 error, 2 images differ beyond tolerance, 130 interrupted"});
+
+        FlagList pixel = {{"--size", ""}, {"--device", ""}, {"--block", ""}, {"--lenient", ""}};
+        pixel.insert(pixel.end(), kCameraFlags.begin(), kCameraFlags.end());
+        pixel.insert(pixel.end(), {{"--shader-dir", ""},
+                                   {"--variant", ""},
+                                   {"--validation", ""},
+                                   {"-D", ""},
+                                   {"--dump-spirv", ""},
+                                   {"--quiet", ""},
+                                   {"--precision", ""}});
+        s.push_back(
+            {"pixel",
+             Command::Pixel,
+             "trace one pixel on GPU and CPU, side by side",
+             {"SCENE", "X", "Y"},
+             "pixel: expected a scene file and a pixel, e.g. `vkray pixel scene.sdl 320 240`",
+             pixel});
+
+        s.push_back({"compare",
+                     Command::Compare,
+                     "compare two images: PNG, PFM, EXR or BMP; ids from .id.pfm or an .exr's id "
+                     "channel (found beside A and B too)",
+                     {"A", "B"},
+                     "compare: expected two image files A B",
+                     {{"--ids", ""},
+                      {"--diff", "write a diff image"},
+                      {"--fail", "per-pixel error threshold (idiff --fail)"},
+                      {"--failpercent", "percent of pixels allowed over T (idiff --failpercent)"}},
+                     "exit status: 0 within tolerance, 1 error, 2 images differ beyond tolerance"});
+
+        s.push_back({"stress",
+                     Command::Stress,
+                     "precision modes against the oracle, on the stress cases",
+                     {},
+                     "stress: takes no arguments",
+                     {{"--cases", ""},
+                      {"--cases-dir", ""},
+                      {"--size", ""},
+                      {"--out", "where the CSV, JSON and HTML go (default stress-report)"},
+                      {"--device", ""},
+                      {"--threads", ""},
+                      {"--shader-dir", ""},
+                      {"--precision", kModeOnlyHelp}}});
+
+        FlagList report = {{"--size", ""},
+                           {"--out", "where the CSV, JSON and HTML go (default report-SCENE)"},
+                           {"--lenient", ""}};
+        report.insert(report.end(), kCameraFlags.begin(), kCameraFlags.end());
+        report.insert(report.end(), {{"--device", ""},
+                                     {"--threads", ""},
+                                     {"--shader-dir", ""},
+                                     {"--precision", kModeOnlyHelp}});
+        s.push_back({"report",
+                     Command::Report,
+                     "error against run time over the knobs, for one scene",
+                     {"SCENE"},
+                     "report: expected one scene file, e.g. `vkray report scenes/default.sdl`",
+                     report});
+
+        s.push_back({"features",
+                     Command::Features,
+                     "the scene's features, shader variant and buffers",
+                     {"SCENE"},
+                     "features: expected one scene file, e.g. `vkray features scenes/default.sdl`",
+                     {{"--variant", ""},
+                      {"--spp", ""},
+                      {"--precision", ""},
+                      {"--lenient", ""},
+                      {"-D", ""},
+                      {"--shader-dir", ""}}});
+
+        s.push_back(
+            {"difftest",
+             Command::Difftest,
+             "random scenes on GPU and CPU, compared",
+             {},
+             "difftest: takes no arguments",
+             {{"--scenes", ""},
+              {"--seed", "the first scene's seed (default 0): the same seeds draw the same scenes"},
+              {"--precision",
+               "draw scenes for this mode only (default: robust or fp64, drawn "
+               "by seed; naive, the textbook's float, disagrees by design "
+               "and comes only on request)"},
+              {"--variant",
+               "all: render every scene with the all-features shader (faster "
+               "for long runs: lavapipe compiles it once; default: each "
+               "scene's own variant)"},
+              {"--out",
+               "where the scenes that disagree are kept, each with its command "
+               "(default difftest)"},
+              {"--device", ""},
+              {"--threads", ""},
+              {"--shader-dir", ""}}});
+
+        FlagList view = {{"--size", "image size (default 960x540; each side <= 16384)"},
+                         {"--spp", "samples per pixel of the progression (default 16)"},
+                         {"--seed", ""}};
+        view.insert(view.end(), kCameraFlags.begin(), kCameraFlags.end());
+        view.insert(view.end(),
+                    {{"--fail", "the difference view's threshold (default 0.02, as --check's)"},
+                     {"--events", ""},
+                     {"--frames", ""},
+                     {"--screenshot", ""},
+                     {"--device", ""},
+                     {"--precision", ""},
+                     {"--variant", ""},
+                     {"-D", ""},
+                     {"--shader-dir", ""},
+                     {"--lenient", ""},
+                     {"--threads", ""},
+                     {"--validation", ""}});
+        s.push_back({"view",
+                     Command::View,
+                     "a window that renders progressively and reloads on change",
+                     {"SCENE"},
+                     "view: expected one scene file, e.g. `vkray view scenes/default.sdl`",
+                     view,
+                     "keys: mouse left orbits, right pans, wheel zooms; r resets the camera, p "
+                     "prints it;\n  1 colour, 2 depth, 3 normal, 4 object id; c CPU reference, d "
+                     "GPU - CPU difference;\n  s saves a PNG; q or Esc quits"});
+
+        s.push_back({"devices",
+                     Command::Devices,
+                     "list Vulkan devices",
+                     {},
+                     "devices: takes no arguments",
+                     {}});
+        s.push_back({"shaders check",
+                     Command::ShadersCheck,
+                     "compile the shader variants",
+                     {},
+                     "shaders check: takes no arguments",
+                     {{"--all", ""}, {"--precision", ""}, {"--shader-dir", ""}}});
+        return s;
+    }();
+    return specs;
+}
+
+std::string positionalHelp(const std::string& name) {
+    if (name == "SCENE") return "the scene file (.sdl)";
+    if (name == "X") return "the pixel's column, 0 at the left";
+    if (name == "Y") return "the pixel's row, 0 at the top";
+    return "an image: .png, .pfm, .exr or .bmp";
+}
+
+// Messages for CLI11's `needs` and `excludes`, keyed by the two flags: the
+// project's own words (tests and scripts read them).
+std::string needsMessage(const std::string& flag, const std::string& needed) {
+    if (needed == "--check") return flag + " needs --check (or use `vkray compare`)";
+    if (flag == "--screenshot")
+        return "--screenshot needs --frames N: the pass after which it is taken";
+    return flag + " needs " + needed;
+}
+
+std::string excludesMessage(std::string a, std::string b) {
+    if (a != "--cpu") std::swap(a, b);
+    if (a == "--cpu") {
+        if (b == "--check") return "--cpu and --check: --check already renders with both";
+        if (b == "--validation") return "--validation applies to the GPU; drop --cpu";
+        if (b == "-D" || b == "--dump-spirv")
+            return "-D and --dump-spirv apply to the GPU shader; drop --cpu";
+        if (b == "--precision")
+            return "--precision applies to the GPU; --cpu always renders in double";
+    }
+    return a + " and " + b + " cannot be given together";
+}
+
+// The command line, as CLI11 sees it; binds into `o`.
+struct Parser {
+    CLI::App app{
+        "vkray: a Vulkan compute-shader ray tracer for SDL scenes, checked against a "
+        "double-precision CPU reference",
+        "vkray"};
+    std::map<const CLI::App*, const CommandSpec*> specs;
+    std::map<const CommandSpec*, std::vector<std::string>> positionals;
+    bool version = false;
+
+    explicit Parser(Options& o) {
+        app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+        app.require_subcommand(0, 1);
+        app.add_flag("--version", version, "print the version and whether MPI is built in");
+        app.get_formatter()->label("Subcommands", "Commands");
+        app.get_formatter()->label("SUBCOMMAND", "COMMAND");
+        app.footer(
+            "`vkray COMMAND --help` lists the command's options (docs/usage.md has them "
+            "all).\nexit status: 0 success, 1 error, 2 images differ beyond tolerance, "
+            "130 interrupted");
+        CLI::App* shaders = nullptr;
+        for (const CommandSpec& spec : commandSpecs()) {
+            CLI::App* sub = nullptr;
+            const std::string name = spec.name;
+            if (name.rfind("shaders ", 0) == 0) {
+                if (!shaders) {
+                    shaders = app.add_subcommand("shaders", "shader tools: `vkray shaders check`");
+                    shaders->require_subcommand(0, 1);
+                    specs[shaders] = &spec;
+                }
+                sub = shaders->add_subcommand(name.substr(8), spec.help);
+            } else {
+                sub = app.add_subcommand(name, spec.help);
+            }
+            specs[sub] = &spec;
+            if (*spec.footer) sub->footer(spec.footer);
+            std::vector<std::string>& values = positionals[&spec];
+            values.resize(spec.positionals.size());
+            for (size_t i = 0; i < spec.positionals.size(); ++i)
+                sub->add_option(spec.positionals[i], values[i], positionalHelp(spec.positionals[i]))
+                    ->type_name("")
+                    ->required();
+            for (const auto& [flag, help] : spec.flags) addFlag(*sub, o, flag, help);
+            if (spec.command == Command::Render) {
+                CLI::Option* cpu = sub->get_option("--cpu");
+                for (const char* gpuOnly :
+                     {"--check", "--validation", "-D", "--dump-spirv", "--precision"})
+                    cpu->excludes(sub->get_option(gpuOnly));
+                for (const char* checkOnly : {"--diff", "--fail", "--failpercent"})
+                    sub->get_option(checkOnly)->needs(sub->get_option("--check"));
+            }
+            if (spec.command == Command::View)
+                sub->get_option("--screenshot")->needs(sub->get_option("--frames"));
+        }
+    }
+
+    // The innermost command given, else the application itself.
+    CLI::App* selected() {
+        CLI::App* at = &app;
+        while (!at->get_subcommands().empty()) at = at->get_subcommands().front();
+        return at;
+    }
+
+    std::string commandLine(const CLI::App* sub) const {
+        std::string line;
+        for (; sub; sub = sub->get_parent())
+            line = sub->get_name() + (line.empty() ? "" : " ") + line;
+        return line;
+    }
+
+    // A CLI11 parse error in vkray's words, naming the flag or value.
+    [[noreturn]] void fail(const CLI::ParseError& e) {
+        const std::string what = e.what();
+        CLI::App* sub = selected();
+        const std::string verb = commandLine(sub);
+        // What was left unparsed: an unknown flag is named first, whatever
+        // else is wrong.
+        std::string extra;
+        for (CLI::App* at = sub; at && extra.empty(); at = at->get_parent())
+            if (!at->remaining(false).empty()) extra = at->remaining(false).front();
+        const bool isFlag = extra.size() > 1 && extra[0] == '-' &&
+                            !std::isdigit(static_cast<unsigned char>(extra[1]));
+        if (isFlag) {
+            extra = extra.substr(0, extra.find('='));
+            throw Error("unknown option '" + extra + "' for `" + verb + "`; try `" + verb +
+                        " --help`");
+        }
+        if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+            if (sub == &app) throw Error("unknown command '" + extra + "'; try `vkray --help`");
+            if (sub->get_name() == "shaders") throw Error(kShadersExpected);
+            throw Error(specs.at(sub)->positionalError);
+        }
+        if (dynamic_cast<const CLI::RequiredError*>(&e) && sub != &app)
+            throw Error(specs.at(sub)->positionalError);  // a positional is missing
+        if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) {
+            const std::string flag = what.substr(0, what.find(':'));
+            if (flag == "--ids") throw Error(kIdsExpected);
+            if (flag == "-D") throw Error("-D: expects NAME=VALUE");
+            throw Error(flag + ": expects a value");
+        }
+        if (dynamic_cast<const CLI::RequiresError*>(&e)) {
+            const size_t at = what.find(" requires ");
+            throw Error(needsMessage(what.substr(0, at), what.substr(at + 10)));
+        }
+        if (dynamic_cast<const CLI::ExcludesError*>(&e)) {
+            const size_t at = what.find(" excludes ");
+            throw Error(excludesMessage(what.substr(0, at), what.substr(at + 10)));
+        }
+        throw Error(what);  // ValidationError: "--spp: 0 is out of range (1 .. 4096)"
+    }
+};
+
 }  // namespace
 
 std::string usageText() {
-    return R"(usage:
-  vkray render SCENE.sdl [-o out.png] [options]   render on the GPU (or --cpu)
-  vkray pixel SCENE.sdl X Y [options]             trace one pixel on GPU and CPU, side by side
-  vkray compare A B [--ids IDS_A IDS_B] [--diff FILE] [--fail T] [--failpercent P]
-                                                  PNG, PFM, EXR or BMP; ids from .id.pfm or an
-                                                  .exr's id channel (found beside A and B too)
-  vkray stress [--cases PATTERN] [--size WxH] [--out DIR]   precision modes against the oracle
-  vkray report SCENE.sdl [--size WxH] [--out DIR]          error against run time over the knobs
-  vkray features SCENE.sdl [--variant all] [--spp N] [--precision MODE] [--lenient] [-D NAME=VALUE]
-                                                  the scene's features, shader variant and buffers
-  vkray difftest [--scenes N] [--seed S] [--precision MODE] [--out DIR]
-                                                  random scenes on GPU and CPU, compared
-  vkray view SCENE.sdl [options]                  a window that renders progressively and
-                                                  reloads on change (docs/usage.md, "view")
-  vkray devices                                   list Vulkan devices
-  vkray shaders check [--all] [--precision MODE] [--shader-dir DIR]
-                                                  compile the shader variants
-  vkray --version | --help
-
-render options:
-  -o, --output FILE     image to write: .png (default: SCENE's name with .png), .pfm, or
-                        .exr (linear float, unclamped)
-  --size WxH            image size (default 640x480; each side <= 16384)
-  --device N            Vulkan device index (see `vkray devices`)
-  --block N             one ray per NxN block, the block filled with its colour
-  --spp N               samples per pixel (1..4096, default 1): stratified, jittered
-  --seed S              seed of the sample positions (0..4294967295, default 0)
-  --aov PREFIX          also write PREFIX.depth.pfm, PREFIX.normal.pfm, PREFIX.id.pfm
-  --aov NAME.exr        ... or one OpenEXR file: R,G,B  Z  N.X,N.Y,N.Z  id  P.X,P.Y,P.Z
-  --cpu                 render with the CPU reference instead of the GPU
-  --check               render with both and compare (exit 2 beyond tolerance)
-  --diff FILE           with --check: write a diff image
-  --fail T              with --check: per-pixel error threshold (idiff --fail)
-  --failpercent P       with --check: percent of pixels allowed over T (idiff --failpercent)
-  --lenient             skip unknown words and unsupported shapes, with warnings
-  --eye X,Y,Z --look X,Y,Z --up X,Y,Z --fov DEG   override the scene's camera
-  --threads N           CPU reference threads (default: all cores)
-  --shader-dir DIR      GLSL folder (default: shaders/ next to the binary,
-                        else ../share/vkray/shaders)
-  --variant all|scene   compile every shape in, or only the scene's (default)
-  --validation          enable the Khronos validation layer; any message fails
-  --watch               re-render when the scene, a file it reads or a shader changes
-  -D NAME=VALUE         define for the shader compile (repeatable)
-  --dump-spirv DIR      write the SPIR-V of the variant used to DIR
-  --quiet               no progress display on stderr
-  --precision MODE      naive, robust (default) or fp64: float care on the GPU (docs/numerics.md);
-                        for stress and report: only that mode (default: all)
-
-Ctrl-C (SIGINT, SIGTERM) stops a render between tiles: nothing is written,
-existing files stay as they were, exit status 130.
-
-stress and report options:
-  --out DIR             where the CSV, JSON and HTML go (default stress-report, report-SCENE)
-  --cases PATTERN       stress: only the cases whose name contains PATTERN
-  --cases-dir DIR       stress: the cases' folder (default scenes/stress next to the binary,
-                        else ../share/vkray/stress)
-
-view options (besides the camera, --size (default 960x540), --spp (default 16),
---seed, --device, --precision, --variant, -D, --shader-dir, --lenient, --threads, --validation):
-  --fail T              the difference view's threshold (default 0.02, as --check's)
-  --events FILE         replay input: `key p`, `drag left 100 0`, `wheel 3`, `wait-pass`,
-                        `wait-cpu`, `wait-reload`, one a line
-  --frames N            quit after N passes of the progression (after the events)
-  --screenshot FILE     with --frames: save the last frame there, as the `s` key would
-keys: mouse left orbits, right pans, wheel zooms; r resets the camera, p prints it;
-  1 colour, 2 depth, 3 normal, 4 object id; c CPU reference, d GPU - CPU difference;
-  s saves a PNG; q or Esc quits
-
-difftest options:
-  --scenes N            how many scenes to draw (default 100)
-  --seed S              the first scene's seed (default 0): the same seeds draw the same scenes
-  --precision MODE      draw scenes for this mode only (default: robust or fp64, drawn by seed;
-                        naive, the textbook's float, disagrees by design and comes only on request)
-  --variant all         render every scene with the all-features shader (faster for long runs:
-                        lavapipe compiles it once; default: each scene's own variant)
-  --out DIR             where the scenes that disagree are kept, each with its command
-                        (default difftest)
-
-exit status: 0 success, 1 error, 2 images differ beyond tolerance, 130 interrupted
-)";
+    Options unused;
+    Parser parser(unused);
+    return parser.app.help();
 }
 
 Options parseOptions(const std::vector<std::string>& args) {
     Options o;
-    if (args.empty()) return o;
-    const std::string& verb = args[0];
-    if (verb == "--help" || verb == "-h" || verb == "help") return o;
-    if (verb == "--version") {
-        o.command = Command::Version;
+    if (args.empty() || args[0] == "help") {
+        o.helpText = usageText();
         return o;
     }
-    size_t first = 1;
-    if (verb == "render") o.command = Command::Render;
-    else if (verb == "pixel") o.command = Command::Pixel;
-    else if (verb == "compare") o.command = Command::Compare;
-    else if (verb == "devices") o.command = Command::Devices;
-    else if (verb == "stress") o.command = Command::Stress;
-    else if (verb == "report") o.command = Command::Report;
-    else if (verb == "features") o.command = Command::Features;
-    else if (verb == "difftest") o.command = Command::Difftest;
-    else if (verb == "view") {
-        o.command = Command::View;
-        o.width = 960;
-        o.height = 540;
-        o.spp = 16;
-    }
-    else if (verb == "shaders" && args.size() > 1 && args[1] == "check") {
-        o.command = Command::ShadersCheck;
-        first = 2;
-    } else if (verb == "shaders") throw Error("shaders: expected `vkray shaders check`");
-    else throw Error("unknown command '" + verb + "'; try `vkray --help`");
-
-    std::vector<std::string> positional;
-    for (size_t i = first; i < args.size(); ++i) {
-        std::string arg = args[i], value;
-        // A lone '-' or a negative number is a positional argument.
-        if (arg.size() < 2 || arg[0] != '-' || std::isdigit(static_cast<unsigned char>(arg[1]))) {
-            positional.push_back(arg);
-            continue;
-        }
-        if (arg.rfind("-D", 0) == 0 && accepts(o.command, "-D")) {
-            if (arg.size() == 2 && i + 1 >= args.size()) throw Error("-D: expects NAME=VALUE");
-            parseDefine(arg.size() > 2 ? arg.substr(2) : args[++i], o);
-            continue;
-        }
-        if (size_t eq = arg.find('='); eq != std::string::npos && arg.rfind("--", 0) == 0) {
-            value = arg.substr(eq + 1);
-            arg = arg.substr(0, eq);
-        }
-        if (o.command == Command::Compare && arg == "--ids") {
-            if (i + 2 >= args.size())
-                throw Error("--ids: expected two files, A.id.pfm B.id.pfm (or A.exr B.exr)");
-            o.idsA = args[++i];
-            o.idsB = args[++i];
-            continue;
-        }
-        auto it = renderFlags().find(arg);
-        if (it == renderFlags().end() || !accepts(o.command, arg))
-            throw Error("unknown option '" + arg + "' for `vkray " + verb + "`; try `vkray --help`");
-        if (it->second.takesValue && value.empty()) {
-            if (i + 1 >= args.size()) throw Error(arg + ": expects a value");
-            value = args[++i];
-        }
-        it->second.apply(o, value);
+    Parser parser(o);
+    std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them so
+    try {
+        parser.app.parse(reversed);
+    } catch (const CLI::CallForHelp&) {
+        o.command = Command::Help;
+        o.helpText = parser.app.help();
+        return o;
+    } catch (const CLI::CallForAllHelp&) {
+        o.command = Command::Help;
+        o.helpText = parser.app.help("", CLI::AppFormatMode::All);
+        return o;
+    } catch (const CLI::ParseError& e) {
+        parser.fail(e);
     }
 
-    if (o.command == Command::Render) {
-        if (positional.size() != 1)
-            throw Error("render: expected one scene file, e.g. `vkray render scenes/default.sdl -o out.png`");
+    CLI::App* sub = parser.selected();
+    if (sub == &parser.app) {
+        if (parser.version)
+            o.command = Command::Version;
+        else
+            o.helpText = usageText();
+        return o;
+    }
+    const CommandSpec& spec = *parser.specs.at(sub);
+    if (sub->get_name() == "shaders") throw Error(kShadersExpected);  // without `check`
+    o.command = spec.command;
+    const std::vector<std::string>& positional = parser.positionals.at(&spec);
+
+    if (o.command == Command::View) {
+        if (sub->get_option("--size")->count() == 0) {
+            o.width = 960;
+            o.height = 540;
+        }
+        if (sub->get_option("--spp")->count() == 0) o.spp = 16;
+        if (!o.screenshotPath.empty() &&
+            std::filesystem::path(o.screenshotPath).extension() != ".png")
+            throw Error("--screenshot " + o.screenshotPath + ": the screenshot is a .png file");
+    }
+    if (o.command == Command::Compare) {
+        o.imageA = positional[0];
+        o.imageB = positional[1];
+    } else if (!positional.empty()) {
         o.scenePath = positional[0];
-        if (o.cpu && o.check) throw Error("--cpu and --check: --check already renders with both");
-        if (!o.diffPath.empty() && !o.check) throw Error("--diff needs --check (or use `vkray compare`)");
-        if (o.failThreshold && !o.check) throw Error("--fail needs --check (or use `vkray compare`)");
-        if (o.failPercent && !o.check) throw Error("--failpercent needs --check (or use `vkray compare`)");
-        if (o.cpu && o.validation) throw Error("--validation applies to the GPU; drop --cpu");
-        if (o.cpu && (!o.defines.empty() || !o.dumpSpirvDirectory.empty()))
-            throw Error("-D and --dump-spirv apply to the GPU shader; drop --cpu");
-        if (o.cpu && o.precisionGiven)
-            throw Error("--precision applies to the GPU; --cpu always renders in double");
-    } else if (o.command == Command::Pixel) {
-        if (positional.size() != 3)
-            throw Error("pixel: expected a scene file and a pixel, e.g. `vkray pixel scene.sdl 320 240`");
-        o.scenePath = positional[0];
+    }
+    if (o.command == Command::Pixel) {
         o.pixelX = parsePixelCoordinate("X", positional[1]);
         o.pixelY = parsePixelCoordinate("Y", positional[2]);
         if (o.pixelX >= o.width || o.pixelY >= o.height)
             throw Error("pixel: (" + positional[1] + ", " + positional[2] + ") is outside the " +
                         std::to_string(o.width) + "x" + std::to_string(o.height) +
                         " image; pass --size or a smaller X Y");
-    } else if (o.command == Command::View) {
-        if (positional.size() != 1)
-            throw Error("view: expected one scene file, e.g. `vkray view scenes/default.sdl`");
-        o.scenePath = positional[0];
-        if (!o.screenshotPath.empty() && o.frames == 0)
-            throw Error("--screenshot needs --frames N: the pass after which it is taken");
-        if (!o.screenshotPath.empty() && std::filesystem::path(o.screenshotPath).extension() != ".png")
-            throw Error("--screenshot " + o.screenshotPath + ": the screenshot is a .png file");
-    } else if (o.command == Command::Report) {
-        if (positional.size() != 1)
-            throw Error("report: expected one scene file, e.g. `vkray report scenes/default.sdl`");
-        o.scenePath = positional[0];
-    } else if (o.command == Command::Features) {
-        if (positional.size() != 1)
-            throw Error("features: expected one scene file, e.g. `vkray features scenes/default.sdl`");
-        o.scenePath = positional[0];
-    } else if (o.command == Command::Compare) {
-        if (positional.size() != 2) throw Error("compare: expected two image files A B");
-        o.imageA = positional[0];
-        o.imageB = positional[1];
-    } else if (!positional.empty()) {
-        throw Error(verb + ": takes no arguments");
     }
     return o;
 }

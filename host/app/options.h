@@ -1,6 +1,7 @@
-// The command line, parsed into a plain struct (pbrt-v4's Options style):
-// `--x v` and `--x=v` both work, unknown flags and bad values are errors that
-// name the flag, and combinations are checked after parsing.
+// The command line, parsed by CLI11 into a plain struct (pbrt-v4's Options
+// style): each command a subcommand with its own flags and generated --help;
+// `--x v` and `--x=v` both work; unknown flags, values out of range and
+// flags that need or exclude another are errors that name the flag.
 #pragma once
 
 #include "gpu/precision.h"
@@ -24,6 +25,7 @@ inline constexpr long long kMaxRenderPixels = 64ll * 1024 * 1024;
 
 struct Options {
     Command command = Command::Help;
+    std::string helpText;  // Command::Help: the usage asked for (`vkray [COMMAND] --help`)
 
     // render
     std::string scenePath;
@@ -80,9 +82,11 @@ struct Options {
     std::optional<double> failPercent;
 };
 
-// Throws Error (message names the flag or value) on bad usage.
+// Throws Error (message names the flag or value) on bad usage. `--help`, at
+// the top or after a command, gives Command::Help with that usage in helpText.
 Options parseOptions(const std::vector<std::string>& args);
 
+// `vkray --help`: the commands, generated from the parser's own table.
 std::string usageText();
 
 }  // namespace vkray

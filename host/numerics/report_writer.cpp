@@ -3,6 +3,8 @@
 #include "image/image_io.h"
 #include "util/error.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -45,35 +47,18 @@ std::string csvField(const std::string& s) {
     return out + "\"";
 }
 
-std::string jsonString(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        switch (c) {
-        case '"': out += "\\\""; break;
-        case '\\': out += "\\\\"; break;
-        case '\n': out += "\\n"; break;
-        case '\t': out += "\\t"; break;
-        default:
-            if (static_cast<unsigned char>(c) < 0x20) {
-                char escaped[8];
-                std::snprintf(escaped, sizeof escaped, "\\u%04x", unsigned(c));
-                out += escaped;
-            } else {
-                out += c;
-            }
-        }
-    }
-    return out + "\"";
-}
-
-std::string jsonValue(const ReportValue& v) {
+// A cell in JSON: numbers as CSV prints them (9 significant digits), so that
+// both files hold the same values; a non-finite number is null.
+nlohmann::ordered_json jsonValue(const ReportValue& v) {
     switch (v.kind) {
-    case ReportValue::Empty: return "null";
-    case ReportValue::Integer: return std::to_string(v.integer);
-    case ReportValue::Text: return jsonString(v.text);
-    case ReportValue::Number: return std::isfinite(v.number) ? fullNumber(v.number) : "null";
+    case ReportValue::Empty: return nullptr;
+    case ReportValue::Integer: return v.integer;
+    case ReportValue::Text: return v.text;
+    case ReportValue::Number:
+        if (!std::isfinite(v.number)) return nullptr;
+        return std::stod(fullNumber(v.number));
     }
-    return "null";
+    return nullptr;
 }
 
 std::string xml(const std::string& s) {
@@ -238,23 +223,20 @@ std::string toCsv(const ReportTable& table) {
 }
 
 std::string toJson(const Report& report) {
-    std::ostringstream out;
-    out << "{\n  \"title\": " << jsonString(report.title) << ",\n  \"notes\": [";
-    for (size_t i = 0; i < report.paragraphs.size(); ++i)
-        out << (i ? ", " : "") << jsonString(report.paragraphs[i]);
-    out << "],\n  \"columns\": [";
-    for (size_t i = 0; i < report.table.columns.size(); ++i)
-        out << (i ? ", " : "") << jsonString(report.table.columns[i]);
-    out << "],\n  \"rows\": [\n";
-    for (size_t r = 0; r < report.table.rows.size(); ++r) {
-        out << "    {";
-        const auto& row = report.table.rows[r];
-        for (size_t i = 0; i < row.size(); ++i)
-            out << (i ? ", " : "") << jsonString(report.table.columns[i]) << ": " << jsonValue(row[i]);
-        out << "}" << (r + 1 < report.table.rows.size() ? "," : "") << "\n";
+    // ordered_json: the members stay in the order written, the rows' in the
+    // table's column order.
+    nlohmann::ordered_json json;
+    json["title"] = report.title;
+    json["notes"] = report.paragraphs;
+    json["columns"] = report.table.columns;
+    json["rows"] = nlohmann::ordered_json::array();
+    for (const std::vector<ReportValue>& row : report.table.rows) {
+        nlohmann::ordered_json& object = json["rows"].emplace_back(nlohmann::ordered_json::object());
+        for (size_t i = 0; i < row.size(); ++i) object[report.table.columns[i]] = jsonValue(row[i]);
     }
-    out << "  ]\n}\n";
-    return out.str();
+    // Text that is not UTF-8 (a Latin-1 name from a scene file) is written
+    // with U+FFFD in its place rather than failing the report.
+    return json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 std::string toSvg(const Plot& plot) {

@@ -283,6 +283,28 @@ TEST_F(Cli, LenientRenderReadsAnUnknownTextureCodeAsNone) {
     EXPECT_FALSE(fs::exists(dir / "out.png"));
 }
 
+TEST_F(Cli, EveryCommandsHelpExitsZeroWithItsFlags) {
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"render", "--spp"},      {"pixel", "--block"},     {"compare", "--ids"},
+        {"stress", "--cases"},    {"report", "--out"},      {"features", "--variant"},
+        {"difftest", "--scenes"}, {"view", "--frames"},     {"devices", "vkray devices"},
+        {"shaders check", "--all"}, {"", "COMMAND --help"}};
+    for (const auto& [command, flag] : cases) {
+        RunResult run = vkray(command + " --help");
+        EXPECT_EQ(run.status, 0) << command << "\n" << run.output;
+        EXPECT_NE(run.output.find(flag), std::string::npos) << command << "\n" << run.output;
+    }
+    RunResult bad = vkray("render " + scene("s.sdl", kGoodScene) + " --spp 0");
+    EXPECT_EQ(bad.status, 1) << bad.output;
+    EXPECT_NE(bad.output.find("vkray: error: --spp: 0 is out of range (1 .. 4096)"), std::string::npos)
+        << bad.output;
+    RunResult unknown = vkray("report --bogus");
+    EXPECT_EQ(unknown.status, 1) << unknown.output;
+    EXPECT_NE(unknown.output.find("unknown option '--bogus' for `vkray report`; try `vkray report --help`"),
+              std::string::npos) << unknown.output;
+    expectNoOutputs();
+}
+
 TEST_F(Cli, NoVulkanDriverGivesAdviceAndExitsOne) {
     RunResult run = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png"),
                     "VK_ICD_FILENAMES=" + path("none.json"));

@@ -141,5 +141,72 @@ TEST(Options, ViewRefusesWhatItDoesNotDo) {
     EXPECT_NE(errorOf({"view", "s.sdl", "--frames", "0"}).find("--frames: 0 is out of range"), std::string::npos);
 }
 
+// Each command's --help is its own, generated from the flags it takes.
+TEST(Options, EveryCommandHasItsOwnHelp) {
+    const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> cases = {
+        {{"render", "--help"}, {"vkray render", "SCENE", "-o,--output", "--spp", "--check", "--fail",
+                                "--failpercent", "--aov", "-D", "--watch", "Needs: --check", "Ctrl-C"}},
+        {{"pixel", "-h"}, {"vkray pixel", "SCENE", "X", "Y", "--block", "--precision"}},
+        {{"compare", "--help"}, {"vkray compare", "--ids", "--diff", "--fail", "--failpercent"}},
+        {{"stress", "--help"}, {"vkray stress", "--cases", "--cases-dir", "--out", "--size"}},
+        {{"report", "--help"}, {"vkray report", "SCENE", "--out", "--fov", "--lenient"}},
+        {{"features", "--help"}, {"vkray features", "--variant", "--spp", "-D"}},
+        {{"difftest", "--help"}, {"vkray difftest", "--scenes", "--seed", "--variant", "--out"}},
+        {{"view", "--help"}, {"vkray view", "--frames", "--screenshot", "--events", "--fail", "keys:"}},
+        {{"devices", "--help"}, {"vkray devices"}},
+        {{"shaders", "check", "--help"}, {"vkray shaders check", "--all", "--precision", "--shader-dir"}},
+        {{"--help"}, {"render", "pixel", "compare", "stress", "report", "features", "difftest", "view",
+                      "devices", "shaders", "--version", "COMMAND --help"}},
+    };
+    for (const auto& [args, texts] : cases) {
+        const Options o = parse(args);
+        EXPECT_EQ(o.command, Command::Help) << args[0];
+        for (const std::string& text : texts)
+            EXPECT_NE(o.helpText.find(text), std::string::npos) << text << " in\n" << o.helpText;
+    }
+    // Only the command's own flags.
+    EXPECT_EQ(parse({"render", "--help"}).helpText.find("--frames"), std::string::npos);
+    EXPECT_EQ(parse({"stress", "--help"}).helpText.find("--spp"), std::string::npos);
+    EXPECT_EQ(parse({"compare", "--help"}).helpText.find("--block"), std::string::npos);
+    EXPECT_EQ(parse({}).helpText, usageText());
+    EXPECT_EQ(parse({"help"}).helpText, usageText());
+}
+
+TEST(Options, ValuesOutOfRangeNameTheFlag) {
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--threads", "0"}), "--threads: 0 is out of range (1 .. 1024)");
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--block=2000"}), "--block: 2000 is out of range (1 .. 1024)");
+    EXPECT_EQ(errorOf({"difftest", "--scenes", "0"}), "--scenes: 0 is out of range (1 .. 100000000)");
+    EXPECT_EQ(errorOf({"stress", "--device", "x"}), "--device: 'x' is not a whole number");
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--failpercent", "101", "--check"}),
+              "--failpercent: must be between 0 and 100");
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--cpu", "--validation"}),
+              "--validation applies to the GPU; drop --cpu");
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--cpu", "-DX=1"}),
+              "-D and --dump-spirv apply to the GPU shader; drop --cpu");
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--precision", "fp64", "--cpu"}),
+              "--precision applies to the GPU; --cpu always renders in double");
+    EXPECT_EQ(errorOf({"render", "a.sdl", "b.sdl"}),
+              "render: expected one scene file, e.g. `vkray render scenes/default.sdl -o out.png`");
+    EXPECT_EQ(errorOf({"shaders"}), "shaders: expected `vkray shaders check`");
+    EXPECT_EQ(errorOf({"devices", "x"}), "devices: takes no arguments");
+    EXPECT_EQ(errorOf({"compare", "a.png", "b.png", "--ids", "a.id.pfm"}),
+              "--ids: expected two files, A.id.pfm B.id.pfm (or A.exr B.exr)");
+}
+
+TEST(Options, DefinesRepeatAndNegativeNumbersAreValues) {
+    const Options o = parse({"render", "s.sdl", "-D", "A=1", "-DB", "--eye", "-1,-2,-3", "-D", "C=x y"});
+    ASSERT_EQ(o.defines.size(), 3u);
+    EXPECT_EQ(o.defines[0], (std::pair<std::string, std::string>{"A", "1"}));
+    EXPECT_EQ(o.defines[1], (std::pair<std::string, std::string>{"B", "1"}));
+    EXPECT_EQ(o.defines[2], (std::pair<std::string, std::string>{"C", "x y"}));
+    EXPECT_EQ(*o.eye, glm::dvec3(-1, -2, -3));
+    EXPECT_EQ(o.scenePath, "s.sdl");
+    EXPECT_EQ(parse({"render", "s.sdl", "--spp", "2", "--spp", "8"}).spp, 8);  // the last one counts
+    EXPECT_EQ(parse({"--version"}).command, Command::Version);
+    const Options check = parse({"shaders", "check", "--all"});
+    EXPECT_EQ(check.command, Command::ShadersCheck);
+    EXPECT_TRUE(check.everyVariant);
+}
+
 }  // namespace
 }  // namespace vkray

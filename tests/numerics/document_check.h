@@ -1,8 +1,6 @@
-// Small checkers for the report files, so the tests need no JSON or XML
-// library: a strict JSON reader (RFC 8259 subset: no surrogate pairs) into a
-// value tree, a CSV splitter, and an XML well-formedness check for the HTML
-// page (it is written as XHTML-style markup: every element closed, every
-// attribute quoted).
+// Small checkers for the report files (their JSON is read with nlohmann-json):
+// a CSV splitter, and an XML well-formedness check for the HTML page (it is
+// written as XHTML-style markup: every element closed, every attribute quoted).
 #pragma once
 
 #include <cctype>
@@ -13,126 +11,6 @@
 #include <vector>
 
 namespace vkray::test {
-
-struct Json {
-    enum Kind { Null, Bool, Number, String, Array, Object } kind = Null;
-    bool boolean = false;
-    double number = 0;
-    std::string text;
-    std::vector<Json> items;              // Array
-    std::map<std::string, Json> members;  // Object
-
-    const Json& operator[](const std::string& key) const { return members.at(key); }
-};
-
-class JsonReader {
-public:
-    explicit JsonReader(const std::string& s) : s_(s) {}
-
-    // Throws std::runtime_error with the offset on anything malformed.
-    Json document() {
-        Json v = value();
-        space();
-        if (i_ != s_.size()) fail("text after the value");
-        return v;
-    }
-
-private:
-    [[noreturn]] void fail(const std::string& what) {
-        throw std::runtime_error("JSON: " + what + " at offset " + std::to_string(i_));
-    }
-    void space() {
-        while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) ++i_;
-    }
-    bool eat(char c) {
-        space();
-        if (i_ < s_.size() && s_[i_] == c) {
-            ++i_;
-            return true;
-        }
-        return false;
-    }
-    void expect(char c) {
-        if (!eat(c)) fail(std::string("expected '") + c + "'");
-    }
-    std::string string() {
-        expect('"');
-        std::string out;
-        while (i_ < s_.size() && s_[i_] != '"') {
-            char c = s_[i_++];
-            if (static_cast<unsigned char>(c) < 0x20) fail("control character in a string");
-            if (c == '\\') {
-                if (i_ >= s_.size()) fail("unfinished escape");
-                const char e = s_[i_++];
-                if (e == 'u') {
-                    if (i_ + 4 > s_.size()) fail("short \\u escape");
-                    for (int k = 0; k < 4; ++k)
-                        if (!std::isxdigit(static_cast<unsigned char>(s_[i_ + size_t(k)]))) fail("bad \\u escape");
-                    out += char(std::stoi(s_.substr(i_, 4), nullptr, 16));
-                    i_ += 4;
-                    continue;
-                }
-                const std::string from = "\"\\/bfnrt", to = "\"\\/\b\f\n\r\t";
-                const size_t k = from.find(e);
-                if (k == std::string::npos) fail("bad escape");
-                c = to[k];
-            }
-            out += c;
-        }
-        if (i_ >= s_.size()) fail("unterminated string");
-        ++i_;
-        return out;
-    }
-    Json value() {
-        space();
-        if (i_ >= s_.size()) fail("unexpected end");
-        Json v;
-        const char c = s_[i_];
-        if (c == '{') {
-            ++i_;
-            v.kind = Json::Object;
-            if (eat('}')) return v;
-            do {
-                space();
-                const std::string key = string();
-                expect(':');
-                v.members[key] = value();
-            } while (eat(','));
-            expect('}');
-        } else if (c == '[') {
-            ++i_;
-            v.kind = Json::Array;
-            if (eat(']')) return v;
-            do v.items.push_back(value());
-            while (eat(','));
-            expect(']');
-        } else if (c == '"') {
-            v.kind = Json::String;
-            v.text = string();
-        } else if (s_.compare(i_, 4, "null") == 0) {
-            i_ += 4;
-        } else if (s_.compare(i_, 4, "true") == 0 || s_.compare(i_, 5, "false") == 0) {
-            v.kind = Json::Bool;
-            v.boolean = s_[i_] == 't';
-            i_ += v.boolean ? 4 : 5;
-        } else {
-            const size_t start = i_;
-            if (s_[i_] == '-') ++i_;
-            if (i_ >= s_.size() || !std::isdigit(static_cast<unsigned char>(s_[i_]))) fail("bad value");
-            while (i_ < s_.size() && (std::isdigit(static_cast<unsigned char>(s_[i_])) ||
-                                      std::string(".eE+-").find(s_[i_]) != std::string::npos))
-                ++i_;
-            v.kind = Json::Number;
-            size_t used = 0;
-            v.number = std::stod(s_.substr(start, i_ - start), &used);
-            if (used != i_ - start) fail("bad number");
-        }
-        return v;
-    }
-
-    const std::string& s_;
-    size_t i_ = 0;
-};
 
 // Splits CSV text into rows of fields (quoted fields with "" escapes).
 inline std::vector<std::vector<std::string>> parseCsv(const std::string& text) {

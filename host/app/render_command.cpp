@@ -1,0 +1,212 @@
+#include "app/render_command.h"
+
+#include "app/commands.h"
+#include "app/compare_command.h"
+#include "app/progress.h"
+#include "app/watch.h"
+#include "dist/distributed_render.h"
+#include "dist/mpi_world.h"
+#include "gpu/gpu_tracer.h"
+#include "image/aov_images.h"
+#include "image/image_io.h"
+#include "image/metrics.h"
+#include "reference/reference_tracer.h"
+#include "render/camera.h"
+#include "util/error.h"
+#include "render/render_progress.h"
+#include "scene/scene_geometry.h"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <ostream>
+#include <thread>
+
+namespace vkray {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double mrays(std::size_t rays, double seconds) {
+    return seconds > 0 ? double(rays) / seconds / 1e6 : 0;
+}
+
+std::size_t primaryRays(const RenderSettings& s) {
+    return std::size_t((s.width + s.block - 1) / s.block) *
+           std::size_t((s.height + s.block - 1) / s.block) * std::size_t(s.spp);
+}
+
+// The progress display's callback; it also stops the render on Ctrl-C.
+RenderProgress progressTo(ProgressDisplay& display) {
+    const bool paced = gpu::injectedFault() == gpu::Fault::SlowProgress;
+    return [&display, paced](std::size_t done, std::size_t total) {
+        if (paced) std::this_thread::sleep_for(std::chrono::milliseconds(25));
+        display.update(done, total);
+        return !stopRequested();
+    };
+}
+
+Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
+                const Options& o, GpuSession& session, std::ostream& out, std::ostream& err) {
+    gpu::GpuTracer& tracer = session.tracerFor(o, out);
+    gpu::GpuRenderStats stats;
+    ProgressDisplay display(err, ProgressDisplay::styleForStderr(o.quiet), "gpu render");
+    const dist::World& world = dist::World::current();
+    if (!world.distributed()) {
+        Frame frame = tracer.render(scene, camera, settings, &stats, progressTo(display));
+        display.finish();
+        reportShader(stats, o, out);
+        out << "gpu render: " << fixedDigits(stats.renderSeconds, 3) << " s, precision "
+            << precisionName(o.precision) << ", " << stats.tiles
+            << (stats.tiles == 1 ? " tile" : " tiles") << " in " << stats.dispatches
+            << (stats.dispatches == 1 ? " dispatch, " : " dispatches, ")
+            << fixedDigits(mrays(stats.rays, stats.renderSeconds), 2) << " Mrays/s\n";
+        if (stats.tilesRedone > 0)
+            out << "gpu render: " << stats.tilesRedone
+                << (stats.tilesRedone == 1 ? " tile was" : " tiles were")
+                << " traced again with less work per dispatch: the driver's loop limit cut a "
+                   "dispatch short\n";
+        session.requireNoValidationMessages(o);
+        return frame;
+    }
+    const auto start = Clock::now();
+    dist::DistributedStats shares;
+    Frame frame = dist::renderAcrossRanks(world, tracer, scene, camera, settings, &stats,
+                                          progressTo(display), &shares);
+    if (world.rank() != 0) return frame;  // its tiles are with rank 0, which reports
+    const double seconds = secondsSince(start) - stats.shader.seconds - stats.setupSeconds;
+    display.finish();
+    reportShader(stats, o, out);
+    std::size_t tiles = 0;
+    std::string perRank;
+    for (const std::size_t count : shares.tilesPerRank) {
+        perRank += (perRank.empty() ? "" : ", ") + std::to_string(count);
+        tiles += count;
+    }
+    const std::size_t workerTiles = tiles - shares.tilesPerRank[0];
+    out << "gpu render: " << fixedDigits(seconds, 3) << " s, precision "
+        << precisionName(o.precision) << ", " << tiles << " tiles on " << world.size()
+        << " MPI ranks (tiles per rank: " << perRank << "; hand-out "
+        << fixedDigits(workerTiles ? 1e3 * shares.handOutSeconds / double(workerTiles) : 0.0, 3)
+        << " ms a tile), " << fixedDigits(mrays(primaryRays(settings), seconds), 2) << " Mrays/s\n";
+    session.requireNoValidationMessages(o);
+    return frame;
+}
+
+Frame renderCpu(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
+                const Options& o, std::ostream& out, std::ostream& err) {
+    const auto start = Clock::now();
+    const int threads =
+        o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    ProgressDisplay display(err, ProgressDisplay::styleForStderr(o.quiet), "cpu reference");
+    reference::ReferenceOptions options;
+    options.threads = threads;
+    options.progress = progressTo(display);
+    Frame frame = reference::render(scene, camera, settings, options);
+    display.finish();
+    const double seconds = secondsSince(start);
+    out << "cpu reference render: " << fixedDigits(seconds, 3) << " s, " << threads << " threads, "
+        << fixedDigits(mrays(primaryRays(settings), seconds), 2) << " Mrays/s\n";
+    return frame;
+}
+
+int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::ostream& err) {
+    const Scene scene = loadSceneFor(o, err);
+    const std::string output =
+        o.outputPath.empty() ? fs::path(o.scenePath).stem().string() + ".png" : o.outputPath;
+    requireWritableFolder(output, "output");
+    if (!o.aovPrefix.empty()) requireWritableFolder(o.aovPrefix, "--aov");
+    if (!o.diffPath.empty()) requireWritableFolder(o.diffPath, "--diff");
+    if (!o.dumpSpirvDirectory.empty())
+        requireWritableFolder((fs::path(o.dumpSpirvDirectory) / "x").string(), "--dump-spirv");
+
+    const RenderSettings settings{o.width, o.height, o.block, o.spp, o.seed};
+    const CameraBasis camera = makeCameraBasis(chooseCamera(scene, o), o.width, o.height);
+    out << "scene: " << o.scenePath << " (" << scene.objects.size() << " objects, "
+        << scene.lights.size() << " lights), " << o.width << "x" << o.height
+        << (o.block > 1 ? ", block " + std::to_string(o.block) : std::string())
+        << (o.spp > 1 ? ", " + std::to_string(o.spp) + " spp, seed " + std::to_string(o.seed)
+                      : std::string())
+        << std::endl;  // before the progress display starts
+
+    Frame frame = o.cpu ? renderCpu(scene, camera, settings, o, out, err)
+                        : renderGpu(scene, camera, settings, o, session, out, err);
+    if (dist::World::current().rank() != 0) return 0;  // rank 0 has the frame
+    bool passed = true;
+    // Every output is written in full beside its destination, then all are
+    // renamed into place together: a failed or interrupted run changes none.
+    StagedFiles files;
+    if (o.check) {
+        Frame reference = renderCpu(scene, camera, settings, o, out, err);
+        const CompareOptions tolerance{o.failThreshold.value_or(kCheckFailThreshold),
+                                       o.failPercent.value_or(kCheckFailPercent)};
+        const Image idsGpu = idImage(frame), idsCpu = idImage(reference);
+        out << "gpu vs cpu reference:\n";
+        passed = compareAndReport(colorImage(frame), colorImage(reference), &idsGpu, &idsCpu,
+                                  tolerance, o.diffPath, files, out);
+    }
+
+    if (stopRequested()) throw Interrupted();
+    // `-o X.exr --aov X.exr`: the AOV file holds the image too (R, G, B).
+    const bool imageInAovs =
+        !o.aovPrefix.empty() && isExrPath(o.aovPrefix) &&
+        fs::path(output).lexically_normal() == fs::path(o.aovPrefix).lexically_normal();
+    if (!imageInAovs) stageImage(files, output, colorImage(frame));
+    if (!o.aovPrefix.empty())
+        stageAovs(files, o.aovPrefix, frame,
+            isExrPath(o.aovPrefix) ? hitPoints(frame, camera, settings) : std::vector<glm::vec3>{});
+    if (stopRequested()) throw Interrupted();
+    files.commit();
+    if (!o.diffPath.empty()) out << "wrote " << o.diffPath << "\n";
+    if (!imageInAovs) out << "wrote " << output << "\n";
+    if (!o.aovPrefix.empty()) out << "wrote " << aovFilesText(o.aovPrefix) << "\n";
+    return passed ? 0 : 2;
+}
+
+// --watch: render, then re-render whenever an input or a shader changes, until
+// Ctrl-C. A failed render prints its error and keeps the last good image.
+int runWatch(const Options& o, std::ostream& out, std::ostream& err) {
+    GpuSession session;
+    const std::string shaders = o.cpu ? std::string() : shaderDirectoryFor(o);
+    for (bool first = true; !stopRequested(); first = false) {
+        const auto start = Clock::now();
+        try {
+            renderOnce(o, session, out, err);
+            out << (first ? "rendered" : "reloaded") << " in "
+                << fixedDigits(secondsSince(start), 3) << " s\n";
+        } catch (const Error& e) {
+            printError(e, err);
+            err << "vkray: kept the last good image; fix the error and save to retry\n";
+        }
+        FileWatcher watcher;
+        for (const std::string& file : sceneInputs(o)) watcher.watchFile(file);
+        if (!shaders.empty()) watcher.watchFolder(shaders);
+        out << "watching " << o.scenePath << (shaders.empty() ? "" : " and " + shaders)
+            << " (Ctrl-C stops)" << std::endl;
+        err.flush();
+        if (!watcher.waitForChange()) break;
+    }
+    out << "stopped\n";
+    return 0;
+}
+
+}  // namespace
+
+int runRender(const Options& o, std::ostream& out, std::ostream& err) {
+    // Ctrl-C and SIGTERM set a flag: the render stops between tiles (rows on
+    // the CPU) and writes nothing (Interrupted), or --watch stops waiting.
+    const StopOnSignal stopOnSignal;
+    GpuSession session;
+    if (dist::World::current().distributed()) {
+        if (o.watch) throw Error("--watch does not run across MPI ranks; run it without mpirun");
+        if (o.cpu)
+            throw Error(
+                "--cpu renders in one process (its threads share the cores); run it "
+                "without mpirun");
+    }
+    if (o.watch) return runWatch(o, out, err);
+    return renderOnce(o, session, out, err);
+}
+
+}  // namespace vkray
