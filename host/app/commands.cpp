@@ -17,10 +17,6 @@ namespace vkray {
 
 namespace fs = std::filesystem;
 
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 std::string fixedDigits(double value, int digits) {
     char text[64];
     std::snprintf(text, sizeof text, "%.*f", digits, value);

@@ -9,7 +9,6 @@
 #include "gpu/gpu_tracer.h"
 #include "scene/scene.h"
 
-#include <chrono>
 #include <iosfwd>
 #include <memory>
 #include <string>
@@ -51,8 +50,6 @@ struct GpuSession {
 // The shader line of a GPU command's report; writes the SPIR-V for --dump-spirv.
 void reportShader(const gpu::GpuRenderStats& stats, const Options& options, std::ostream& out);
 
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point start);
 // `value` with `digits` digits after the point, as the reports print times.
 std::string fixedDigits(double value, int digits);
 

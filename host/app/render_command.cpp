@@ -15,6 +15,7 @@
 #include "util/error.h"
 #include "render/render_progress.h"
 #include "scene/scene_geometry.h"
+#include "util/stopwatch.h"
 
 #include <algorithm>
 #include <chrono>
@@ -70,12 +71,12 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
         session.requireNoValidationMessages(o);
         return frame;
     }
-    const auto start = Clock::now();
+    const Stopwatch stopwatch;
     dist::DistributedStats shares;
     Frame frame = dist::renderAcrossRanks(world, tracer, scene, camera, settings, &stats,
                                           progressTo(display), &shares);
     if (world.rank() != 0) return frame;  // its tiles are with rank 0, which reports
-    const double seconds = secondsSince(start) - stats.shader.seconds - stats.setupSeconds;
+    const double seconds = stopwatch.seconds() - stats.shader.seconds - stats.setupSeconds;
     display.finish();
     reportShader(stats, o, out);
     std::size_t tiles = 0;
@@ -96,7 +97,7 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
 
 Frame renderCpu(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
                 const Options& o, std::ostream& out, std::ostream& err) {
-    const auto start = Clock::now();
+    const Stopwatch stopwatch;
     const int threads =
         o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     ProgressDisplay display(err, ProgressDisplay::styleForStderr(o.quiet), "cpu reference");
@@ -105,7 +106,7 @@ Frame renderCpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
     options.progress = progressTo(display);
     Frame frame = reference::render(scene, camera, settings, options);
     display.finish();
-    const double seconds = secondsSince(start);
+    const double seconds = stopwatch.seconds();
     out << "cpu reference render: " << fixedDigits(seconds, 3) << " s, " << threads << " threads, "
         << fixedDigits(mrays(primaryRays(settings), seconds), 2) << " Mrays/s\n";
     return frame;
@@ -170,11 +171,11 @@ int runWatch(const Options& o, std::ostream& out, std::ostream& err) {
     GpuSession session;
     const std::string shaders = o.cpu ? std::string() : shaderDirectoryFor(o);
     for (bool first = true; !stopRequested(); first = false) {
-        const auto start = Clock::now();
+        const Stopwatch stopwatch;
         try {
             renderOnce(o, session, out, err);
             out << (first ? "rendered" : "reloaded") << " in "
-                << fixedDigits(secondsSince(start), 3) << " s\n";
+                << fixedDigits(stopwatch.seconds(), 3) << " s\n";
         } catch (const Error& e) {
             printError(e, err);
             err << "vkray: kept the last good image; fix the error and save to retry\n";

@@ -4,6 +4,7 @@
 #include "gpu/shader_variant.h"
 #include "gpu/spirv_cache.h"
 #include "util/error.h"
+#include "util/stopwatch.h"
 
 #include <ostream>
 
@@ -14,12 +15,12 @@ int runShadersCheck(const Options& o, std::ostream& out, std::ostream& err) {
     int failures = 0;
     const std::vector<gpu::ShaderFeatures> variants = gpu::allVariants(o.everyVariant);
     for (const gpu::ShaderFeatures& features : variants) {
-        const auto start = Clock::now();
+        const Stopwatch stopwatch;
         try {
             gpu::compileComputeShader({directory, "trace.comp",
                                        gpu::definesFor(features, precisionDefines(o.precision))});
             out << "ok    " << gpu::describe(features) << " ("
-                << fixedDigits(secondsSince(start), 2) << " s)\n";
+                << fixedDigits(stopwatch.seconds(), 2) << " s)\n";
         } catch (const Error& e) {
             ++failures;
             out << "FAIL  " << gpu::describe(features) << "\n";
