@@ -37,10 +37,11 @@ Scene randomSpheres(int n) {
     }
     // One sphere alone sits at a random point: look at it, from close enough
     // that it fills a good part of the image like the larger fields do.
-    const glm::dvec3 look = n == 1 ? glm::dvec3(scene.objects[0].worldFromObject[3]) : glm::dvec3(0);
+    const glm::dvec3 look =
+        n == 1 ? glm::dvec3(scene.objects[0].worldFromObject[3]) : glm::dvec3(0);
     const double distance = n == 1 ? 3.5 : side * 1.7;
-    scene.camera = Camera{look + distance * glm::normalize(glm::dvec3(1.2, 0.9, 1.2)), look,
-                          {0, 1, 0}, 60};
+    scene.camera =
+        Camera{look + distance * glm::normalize(glm::dvec3(1.2, 0.9, 1.2)), look, {0, 1, 0}, 60};
     return scene;
 }
 
@@ -60,7 +61,8 @@ Scene uvSphereMesh(int rings) {
     const auto at = [&](int i, int j) { return std::uint32_t(i * (rings + 1) + j); };
     for (int i = 0; i < rings; ++i) {
         for (int j = 0; j < rings; ++j) {
-            const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+            const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1),
+                                d = at(i, j + 1);
             mesh->triangles.push_back({{a, b, c}, {a, b, c}});
             mesh->triangles.push_back({{a, c, d}, {a, c, d}});
         }
@@ -91,6 +93,8 @@ Scene missedSpheres(int n) {
     return scene;
 }
 
-Scene sdlScene(const std::string& path) { return loadScene(path, {true}, nullptr); }
+Scene sdlScene(const std::string& path) {
+    return loadScene(path, {true}, nullptr);
+}
 
 }  // namespace vkray::bench

@@ -1,9 +1,9 @@
 #include "bench/embree_tracer.h"
 
 #include "reference/object_intersect.h"
-#include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "scene/triangle_mesh.h"
+#include "util/error.h"
 
 #include <embree3/rtcore.h>
 
@@ -63,8 +63,12 @@ void cubeTriangles(std::vector<glm::dvec3>& corners, std::vector<std::uint32_t>&
         for (std::uint32_t k : {f[0], f[1], f[2], f[0], f[2], f[3]}) indices.push_back(k);
 }
 
-float down(double x) { return std::nextafter(float(x), -std::numeric_limits<float>::infinity()); }
-float up(double x) { return std::nextafter(float(x), std::numeric_limits<float>::infinity()); }
+float down(double x) {
+    return std::nextafter(float(x), -std::numeric_limits<float>::infinity());
+}
+float up(double x) {
+    return std::nextafter(float(x), std::numeric_limits<float>::infinity());
+}
 
 void userBounds(const RTCBoundsFunctionArguments* args) {
     const auto& impl = *static_cast<const EmbreeTracer::Impl*>(args->geometryUserPtr);
@@ -87,8 +91,8 @@ void userIntersect(const RTCIntersectFunctionNArguments* args) {
                                 RTCRayN_org_z(ray, args->N, i)},
                                {RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
                                 RTCRayN_dir_z(ray, args->N, i)}};
-        const auto h =
-            reference::intersectObject(impl.scene, object, index, r, RTCRayN_tnear(ray, args->N, i));
+        const auto h = reference::intersectObject(impl.scene, object, index, r,
+                                                  RTCRayN_tnear(ray, args->N, i));
         if (!h || h->t >= RTCRayN_tfar(ray, args->N, i)) continue;
         RTCRayN_tfar(ray, args->N, i) = float(h->t);
         RTCHitN_Ng_x(hit, args->N, i) = float(h->normal.x);
@@ -133,7 +137,8 @@ EmbreeTracer::EmbreeTracer(const Scene& scene, int threads) : impl_(std::make_un
         const SceneObject& object = scene.objects[i];
         glm::dvec3 centre;
         double radius;
-        if (object.type == ShapeType::Sphere && similarity(object.worldFromObject, centre, radius)) {
+        if (object.type == ShapeType::Sphere &&
+            similarity(object.worldFromObject, centre, radius)) {
             sphereData.insert(sphereData.end(),
                               {float(centre.x), float(centre.y), float(centre.z), float(radius)});
             sphereObjects.push_back(int(i));
@@ -146,7 +151,8 @@ EmbreeTracer::EmbreeTracer(const Scene& scene, int threads) : impl_(std::make_un
             const TriangleMesh& mesh = reference::meshOf(scene, object);
             std::vector<std::uint32_t> corners;
             corners.reserve(mesh.triangles.size() * 3);
-            for (const auto& t : mesh.triangles) corners.insert(corners.end(), t.position, t.position + 3);
+            for (const auto& t : mesh.triangles)
+                corners.insert(corners.end(), t.position, t.position + 3);
             addTriangles(int(i), object.worldFromObject, mesh.positions, corners);
         } else if (worldBounds(object, scene).finite()) {
             m.userObjects.push_back(int(i));
@@ -164,19 +170,22 @@ EmbreeTracer::EmbreeTracer(const Scene& scene, int threads) : impl_(std::make_un
     };
     if (!sphereObjects.empty()) {
         RTCGeometry g = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-        auto* data = static_cast<float*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), sphereObjects.size()));
+        auto* data = static_cast<float*>(
+            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                    4 * sizeof(float), sphereObjects.size()));
         std::copy(sphereData.begin(), sphereData.end(), data);
         m.spheres = sphereObjects.size();
         attach(g, std::move(sphereObjects));
     }
     if (!triangleObjects.empty()) {
         RTCGeometry g = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size() / 3));
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                              RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                              vertices.size() / 3));
         std::copy(vertices.begin(), vertices.end(), v);
-        auto* t = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), indices.size() / 3));
+        auto* t = static_cast<std::uint32_t*>(
+            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                    3 * sizeof(std::uint32_t), indices.size() / 3));
         std::copy(indices.begin(), indices.end(), t);
         m.triangles = triangleObjects.size();
         attach(g, std::move(triangleObjects));
@@ -197,7 +206,9 @@ EmbreeTracer::EmbreeTracer(const Scene& scene, int threads) : impl_(std::make_un
 
 EmbreeTracer::~EmbreeTracer() = default;
 
-double EmbreeTracer::buildSeconds() const { return impl_->buildSeconds; }
+double EmbreeTracer::buildSeconds() const {
+    return impl_->buildSeconds;
+}
 
 std::string EmbreeTracer::contents() const {
     std::string text;
@@ -215,17 +226,18 @@ std::string EmbreeTracer::version() {
     RTCDevice device = rtcNewDevice("threads=1");
     if (!device) return "(no device)";
     const auto property = [&](RTCDeviceProperty p) { return rtcGetDeviceProperty(device, p); };
-    std::string text = std::to_string(property(RTC_DEVICE_PROPERTY_VERSION_MAJOR)) + "." +
-                       std::to_string(property(RTC_DEVICE_PROPERTY_VERSION_MINOR)) + "." +
-                       std::to_string(property(RTC_DEVICE_PROPERTY_VERSION_PATCH)) +
-                       " (native ray8: " +
-                       (property(RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED) ? "yes" : "no") + ")";
+    std::string text =
+        std::to_string(property(RTC_DEVICE_PROPERTY_VERSION_MAJOR)) + "." +
+        std::to_string(property(RTC_DEVICE_PROPERTY_VERSION_MINOR)) + "." +
+        std::to_string(property(RTC_DEVICE_PROPERTY_VERSION_PATCH)) +
+        " (native ray8: " + (property(RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED) ? "yes" : "no") +
+        ")";
     rtcReleaseDevice(device);
     return text;
 }
 
-std::vector<int> EmbreeTracer::trace(const CameraBasis& camera, int width, int height,
-                                     int threads, bool packets) const {
+std::vector<int> EmbreeTracer::trace(const CameraBasis& camera, int width, int height, int threads,
+                                     bool packets) const {
     const Impl& m = *impl_;
     std::vector<int> ids(size_t(width) * size_t(height), -1);
     // The primary ray of pixel (x, y), as the reference builds it (in double).
@@ -261,9 +273,18 @@ std::vector<int> EmbreeTracer::trace(const CameraBasis& camera, int width, int h
                     for (int x = 0; x < width; ++x) {
                         const glm::dvec3 d = direction(x, y);
                         RTCRayHit rh{};
-                        rh.ray = {float(camera.eye.x), float(camera.eye.y), float(camera.eye.z), 0.f,
-                                  float(d.x), float(d.y), float(d.z), 0.f,
-                                  std::numeric_limits<float>::infinity(), ~0u, 0, 0};
+                        rh.ray = {float(camera.eye.x),
+                                  float(camera.eye.y),
+                                  float(camera.eye.z),
+                                  0.f,
+                                  float(d.x),
+                                  float(d.y),
+                                  float(d.z),
+                                  0.f,
+                                  std::numeric_limits<float>::infinity(),
+                                  ~0u,
+                                  0,
+                                  0};
                         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
                         rtcIntersect1(m.rtcScene, &context, &rh);
                         int id = objectOf(rh.hit.geomID, rh.hit.primID);

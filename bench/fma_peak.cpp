@@ -4,9 +4,9 @@
 #include "gpu/shader_compiler.h"
 #include "util/error.h"
 
+#include <time.h>
 #include <algorithm>
 #include <chrono>
-#include <time.h>
 #include <utility>
 
 namespace vkray::bench {
@@ -56,7 +56,8 @@ FmaPeak measureFmaPeak(gpu::Context& context, const std::string& shaderDirectory
         vk::WriteDescriptorSet(*set, 0, 0, 1, vk::DescriptorType::eStorageBuffer, nullptr, &info),
         nullptr);
     vk::raii::CommandBuffer commands = std::move(
-        vk::raii::CommandBuffers(c.device, {*c.commandPool, vk::CommandBufferLevel::ePrimary, 1}).front());
+        vk::raii::CommandBuffers(c.device, {*c.commandPool, vk::CommandBufferLevel::ePrimary, 1})
+            .front());
     vk::raii::Fence fence(c.device, vk::FenceCreateInfo{});
 
     const auto run = [&](std::uint32_t iterations) {
@@ -74,8 +75,9 @@ FmaPeak measureFmaPeak(gpu::Context& context, const std::string& shaderDirectory
         if (c.device.waitForFences(*fence, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
             throw Error("the FMA benchmark did not finish");
         c.device.resetFences(*fence);
-        return std::pair(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                         cpuSeconds() - cpuStart);
+        return std::pair(
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+            cpuSeconds() - cpuStart);
     };
 
     // Size the loop from a short run (after one that JIT-compiles), then measure.

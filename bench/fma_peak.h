@@ -9,11 +9,11 @@
 namespace vkray::bench {
 
 struct FmaPeak {
-    double gflops = 0;   // best of the runs: 2 flops per FMA per component
+    double gflops = 0;      // best of the runs: 2 flops per FMA per component
     double seconds = 0;     // wall clock of the fastest run
     double cpuSeconds = 0;  // CPU time (all threads) of the run with the least
-    double flops = 0;    // per run
-    int chains = 0;      // independent vec4 chains per invocation
+    double flops = 0;       // per run
+    int chains = 0;         // independent vec4 chains per invocation
 };
 
 // Runs the shader (from shaderDirectory) `runs` times, sized to take about

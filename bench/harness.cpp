@@ -20,15 +20,15 @@
 #include "gpu/gpu_tracer.h"
 #include "reference/reference_tracer.h"
 #include "render/camera.h"
+#include "scene/scene_geometry.h"
 #include "util/error.h"
 #include "util/stopwatch.h"
-#include "scene/scene_geometry.h"
 
+#include <time.h>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
-#include <time.h>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -61,7 +61,8 @@ std::vector<BenchScene> knownScenes() {
                           const char* corpus = std::getenv("VKRAY_SDL_CORPUS");
                           return bench::sdlScene(std::string(corpus ? corpus : "") + "/castle.dat");
                       }});
-    scenes.push_back({"mesh", "UV sphere, 1002528 triangles", [] { return bench::uvSphereMesh(708); }});
+    scenes.push_back(
+        {"mesh", "UV sphere, 1002528 triangles", [] { return bench::uvSphereMesh(708); }});
     scenes.push_back({"default", "scenes/default.sdl",
                       [source] { return bench::sdlScene(source + "/scenes/default.sdl"); }});
     return scenes;
@@ -87,8 +88,8 @@ Options parse(int argc, char** argv) {
     defaults.shaderDirectory = VKRAY_BINARY_DIR "/shaders";
     Options o;
     try {
-        static_cast<bench::BenchOptions&>(o) =
-            bench::parseBenchOptions(std::vector<std::string>(argv + 1, argv + argc), defaults, names);
+        static_cast<bench::BenchOptions&>(o) = bench::parseBenchOptions(
+            std::vector<std::string>(argv + 1, argv + argc), defaults, names);
     } catch (const Error& e) {
         std::fprintf(stderr, "vkray_bench: error: %s; try `vkray_bench --help`\n", e.what());
         std::exit(1);
@@ -100,8 +101,9 @@ Options parse(int argc, char** argv) {
     for (const std::string& name : o.sceneNames) {
         const char* corpus = std::getenv("VKRAY_SDL_CORPUS");
         if (name == "castle" && (corpus == nullptr || *corpus == '\0')) {
-            std::fprintf(stderr, "vkray_bench: castle skipped: VKRAY_SDL_CORPUS does not name the "
-                                 "corpus folder that holds castle.dat\n");
+            std::fprintf(stderr,
+                         "vkray_bench: castle skipped: VKRAY_SDL_CORPUS does not name the "
+                         "corpus folder that holds castle.dat\n");
             continue;
         }
         o.scenes.push_back(*std::find_if(known.begin(), known.end(),
@@ -180,7 +182,8 @@ double frameCpu(int width, int height) {
     for (int r = 0; r < 2; ++r)
         best = std::min(best, timed([&] {
                                   const Frame frame(width, height);
-                                  volatile float sink = frame.color.back().x;  // keep the allocation
+                                  volatile float sink =
+                                      frame.color.back().x;  // keep the allocation
                                   (void)sink;
                               }).cpu);
     return best;
@@ -220,18 +223,21 @@ std::optional<double> specialisedOverAll(const Row& row, RayCounts rays, bool cp
 }
 
 void printTable(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
-    std::printf("| scene | objects | variant | GPU | all-features | CPU ref | Embree 1 | Embree 8 "
-                "| GPU/all | GPU/CPU | GPU/Embree |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf(
+        "| scene | objects | variant | GPU | all-features | CPU ref | Embree 1 | Embree 8 "
+        "| GPU/all | GPU/CPU | GPU/Embree |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const Row& r : rows) {
         std::optional<double> m[kEngines];
         for (int e = 0; e < kEngines; ++e) m[e] = mrays(r, Engine(e), rays, cpuTime);
         const std::optional<double> embree =
-            m[kEmbree1] && m[kEmbree8] ? std::optional(std::max(*m[kEmbree1], *m[kEmbree8])) : std::nullopt;
-        std::printf("| %s | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r.description.c_str(),
-                    r.objects, r.variant.c_str(), rate(m[kGpu]).c_str(), rate(m[kAllFeatures]).c_str(),
-                    rate(m[kCpuReference]).c_str(), rate(m[kEmbree1]).c_str(), rate(m[kEmbree8]).c_str(),
-                    rate(specialisedOverAll(r, rays, cpuTime)).c_str(), ratio(m[kGpu], m[kCpuReference]).c_str(),
-                    ratio(m[kGpu], embree).c_str());
+            m[kEmbree1] && m[kEmbree8] ? std::optional(std::max(*m[kEmbree1], *m[kEmbree8]))
+                                       : std::nullopt;
+        std::printf("| %s | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+                    r.description.c_str(), r.objects, r.variant.c_str(), rate(m[kGpu]).c_str(),
+                    rate(m[kAllFeatures]).c_str(), rate(m[kCpuReference]).c_str(),
+                    rate(m[kEmbree1]).c_str(), rate(m[kEmbree8]).c_str(),
+                    rate(specialisedOverAll(r, rays, cpuTime)).c_str(),
+                    ratio(m[kGpu], m[kCpuReference]).c_str(), ratio(m[kGpu], embree).c_str());
     }
 }
 
@@ -259,17 +265,24 @@ void printAims(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
         if (r.name == "spheres100k") at100k = gpu;
     }
     if (maxSphere > 0)
-        std::printf("- specialised >= 1.5x all-features on sphere-only scenes (%s): %.2fx .. %.2fx: %s\n",
-                    unit, minSphere, maxSphere, minSphere >= 1.5 ? "met" : "NOT met");
+        std::printf(
+            "- specialised >= 1.5x all-features on sphere-only scenes (%s): %.2fx .. %.2fx: %s\n",
+            unit, minSphere, maxSphere, minSphere >= 1.5 ? "met" : "NOT met");
     if (minAll < 1e30)
         std::printf("- specialised never slower than all-features (%s): lowest %.2fx: %s\n", unit,
-                    minAll, minAll >= 1 ? "met" : minAll >= 0.95 ? "even within noise" : "NOT met");
+                    minAll,
+                    minAll >= 1      ? "met"
+                    : minAll >= 0.95 ? "even within noise"
+                                     : "NOT met");
     if (bestEmbree > 0)
         std::printf("- lavapipe >= 0.7x Embree (%s): GPU/Embree %.2fx .. %.2fx: %s\n", unit,
                     worstEmbree, bestEmbree,
-                    worstEmbree >= 0.7 ? "met" : bestEmbree >= 0.7 ? "met on some scenes" : "NOT met");
+                    worstEmbree >= 0.7  ? "met"
+                    : bestEmbree >= 0.7 ? "met on some scenes"
+                                        : "NOT met");
     if (at10 && at100k)
-        std::printf("- cost per ray at 100000 spheres / at 10 (GPU, %s): %.2fx\n", unit, *at10 / *at100k);
+        std::printf("- cost per ray at 100000 spheres / at 10 (GPU, %s): %.2fx\n", unit,
+                    *at10 / *at100k);
 }
 
 // The ray-sphere test's arithmetic (toObjectSpace in trace.comp,
@@ -325,14 +338,17 @@ void runExperiments(const Options& o, gpu::Context& context) {
         {"64 px tiles", with([](auto& p) { p.tileSize = 64; })},
         {"1024 px tiles", with([](auto& p) { p.tileSize = 1024; })},
         {"serpentine tile order", with([](auto& p) { p.serpentineTiles = true; })},
-        {"sphere early-out (behind the ray)",
-         with([](auto& p) { p.userDefines = {{"VKRAY_SPHERE_EARLY_OUT", "1"}}; })},
-        {"8 lanes in a row (not 4x2)",
-         with([](auto& p) { p.userDefines = {{"VKRAY_ROW_LANES", "1"}}; })},
+        {"sphere early-out (behind the ray)", with([](auto& p) {
+             p.userDefines = {{"VKRAY_SPHERE_EARLY_OUT", "1"}};
+         })},
+        {"8 lanes in a row (not 4x2)", with([](auto& p) {
+             p.userDefines = {{"VKRAY_ROW_LANES", "1"}};
+         })},
     };
-    std::printf("\nTuning (specialised variant, %dx%d, best of %d interleaved runs), Mrays per "
-                "CPU-second and its ratio to the shipped configuration:\n\n",
-                o.width, o.height, o.repeat + 1);
+    std::printf(
+        "\nTuning (specialised variant, %dx%d, best of %d interleaved runs), Mrays per "
+        "CPU-second and its ratio to the shipped configuration:\n\n",
+        o.width, o.height, o.repeat + 1);
     std::printf("| scene |");
     for (const Experiment& e : experiments) std::printf(" %s |", e.name);
     std::printf("\n|---|");
@@ -361,7 +377,8 @@ void runExperiments(const Options& o, gpu::Context& context) {
         const double rays = double(o.width) * o.height;
         std::printf("| %s |", bs.description.c_str());
         for (size_t i = 0; i < experiments.size(); ++i) {
-            const bool same = reference[i].color == reference[0].color && reference[i].id == reference[0].id;
+            const bool same =
+                reference[i].color == reference[0].color && reference[i].id == reference[0].id;
             std::printf(" %.2f (%.2fx)%s |", rays / best[i].cpu * 1e-6, best[0].cpu / best[i].cpu,
                         same ? "" : " image differs!");
         }
@@ -375,14 +392,16 @@ void runExperiments(const Options& o, gpu::Context& context) {
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
     // lavapipe's thread count is pinned (as the tests do) unless the caller set it.
-    if (!std::getenv("LP_NUM_THREADS")) ::setenv("LP_NUM_THREADS", std::to_string(o.threads).c_str(), 1);
+    if (!std::getenv("LP_NUM_THREADS"))
+        ::setenv("LP_NUM_THREADS", std::to_string(o.threads).c_str(), 1);
     const Stopwatch run;
     try {
         gpu::Context context;
         const gpu::DeviceInfo& device = context.device();
         const std::string& shaders = o.shaderDirectory;
         gpu::GpuTracer specialised(context, {.shaderDirectory = shaders, .tileSize = o.tile});
-        gpu::GpuTracer allFeatures(context, {.shaderDirectory = shaders, .allFeatures = true, .tileSize = o.tile});
+        gpu::GpuTracer allFeatures(
+            context, {.shaderDirectory = shaders, .allFeatures = true, .tileSize = o.tile});
 
         char date[64];
         const std::time_t now = std::time(nullptr);
@@ -398,19 +417,23 @@ int main(int argc, char** argv) {
 #else
         std::printf("Embree: not built (CMake did not find Embree 3; apt install libembree-dev)\n");
 #endif
-        std::printf("%dx%d primary rays, best of %d runs; CPU reference and Embree on %d threads; "
-                    "GPU tiles %d px, shaders %s\n",
-                    o.width, o.height, o.repeat, o.threads, o.tile, shaders.c_str());
-        std::printf("%s; GPU: the dispatch loop with read-back; CPU reference: the whole render "
-                    "(less allocating the frame); both shade each hit (ambient, emissive%s); Embree: "
-                    "closest hit only (rtcIntersect1, rtcIntersect8 on 4x2 pixels)\n",
-                    o.shaded ? "shaded (--shaded): lights, shadow feelers and secondary rays as the "
-                               "scenes say" : "primary rays only: lights and secondary rays removed",
-                    o.shaded ? ", lights, feelers, secondary rays" : "");
+        std::printf(
+            "%dx%d primary rays, best of %d runs; CPU reference and Embree on %d threads; "
+            "GPU tiles %d px, shaders %s\n",
+            o.width, o.height, o.repeat, o.threads, o.tile, shaders.c_str());
+        std::printf(
+            "%s; GPU: the dispatch loop with read-back; CPU reference: the whole render "
+            "(less allocating the frame); both shade each hit (ambient, emissive%s); Embree: "
+            "closest hit only (rtcIntersect1, rtcIntersect8 on 4x2 pixels)\n",
+            o.shaded ? "shaded (--shaded): lights, shadow feelers and secondary rays as the "
+                       "scenes say"
+                     : "primary rays only: lights and secondary rays removed",
+            o.shaded ? ", lights, feelers, secondary rays" : "");
         if (o.allWidth != o.width || o.allHeight != o.height)
-            std::printf("all-features variant (--all-size): on a %dx%d image of the same view; GPU/all "
-                        "compares it with the specialised variant on that image\n",
-                        o.allWidth, o.allHeight);
+            std::printf(
+                "all-features variant (--all-size): on a %dx%d image of the same view; GPU/all "
+                "compares it with the specialised variant on that image\n",
+                o.allWidth, o.allHeight);
         std::fflush(stdout);
 
         if (o.experiments) runExperiments(o, context);
@@ -469,24 +492,30 @@ int main(int argc, char** argv) {
             if (o.cpu) {
                 Timing best;
                 for (int r = 0; r < o.repeat; ++r)
-                    best.keepBest(timed([&] { cpuFrame = reference::render(scene, basis, settings, {o.threads}); }));
+                    best.keepBest(timed([&] {
+                        cpuFrame = reference::render(scene, basis, settings, {o.threads});
+                    }));
                 best.cpu = std::max(best.cpu - frameCpu(o.width, o.height), 1e-9);
                 row.time[kCpuReference] = best;
                 std::snprintf(text, sizeof text, "%.2f %%",
-                              agreement(std::vector<int>(gpuFrame.id.begin(), gpuFrame.id.end()), cpuFrame.id));
+                              agreement(std::vector<int>(gpuFrame.id.begin(), gpuFrame.id.end()),
+                                        cpuFrame.id));
                 row.idsGpu = text;
             }
 #if VKRAY_HAVE_EMBREE
             if (o.embree) {
                 std::optional<bench::EmbreeTracer> embree;
                 const Timing build = timed([&] { embree.emplace(scene, o.threads); });
-                std::snprintf(text, sizeof text, ", Embree %.3f s (%s)", build.wall, embree->contents().c_str());
+                std::snprintf(text, sizeof text, ", Embree %.3f s (%s)", build.wall,
+                              embree->contents().c_str());
                 row.builds += text;
                 for (bool packets : {false, true}) {
                     Timing best;
                     std::vector<int> ids;
                     for (int r = 0; r < o.repeat; ++r)
-                        best.keepBest(timed([&] { ids = embree->trace(basis, o.width, o.height, o.threads, packets); }));
+                        best.keepBest(timed([&] {
+                            ids = embree->trace(basis, o.width, o.height, o.threads, packets);
+                        }));
                     row.time[packets ? kEmbree8 : kEmbree1] = best;
                     if (packets && o.cpu) {
                         std::snprintf(text, sizeof text, "%.2f %%", agreement(ids, cpuFrame.id));
@@ -501,10 +530,13 @@ int main(int argc, char** argv) {
 
         std::printf("\nMrays/s, wall clock (best of %d):\n\n", o.repeat);
         printTable(rows, rays, false);
-        std::printf("\nMrays per CPU-second (all threads' CPU time; robust to other load on the "
-                    "machine):\n\n");
+        std::printf(
+            "\nMrays per CPU-second (all threads' CPU time; robust to other load on the "
+            "machine):\n\n");
         printTable(rows, rays, true);
-        std::printf("\nSame rays, same hits: object ids equal to the CPU reference's, and build times:\n\n");
+        std::printf(
+            "\nSame rays, same hits: object ids equal to the CPU reference's, and build "
+            "times:\n\n");
         std::printf("| scene | GPU ids | Embree ids | builds |\n|---|---|---|---|\n");
         for (const Row& r : rows)
             std::printf("| %s | %s | %s | %s |\n", r.description.c_str(), r.idsGpu.c_str(),
@@ -515,15 +547,19 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
 
         if (o.fma) {
-            std::printf("\nFMA peak (bench/shaders/fma_peak.comp on %s), per CPU-second and wall clock:\n",
-                        device.name.c_str());
+            std::printf(
+                "\nFMA peak (bench/shaders/fma_peak.comp on %s), per CPU-second and wall clock:\n",
+                device.name.c_str());
             bench::FmaPeak peak;
             for (int chains : {4, 8, 16}) {
                 const bench::FmaPeak p =
                     bench::measureFmaPeak(context, VKRAY_SOURCE_DIR "/bench/shaders", chains);
-                std::printf("- %2d vec4 chains per invocation: %.1f GFLOP per CPU-second, %.1f GFLOP/s wall\n",
-                            chains, p.flops / p.cpuSeconds * 1e-9, p.flops / p.seconds * 1e-9);
-                if (p.flops / p.cpuSeconds > peak.flops / std::max(peak.cpuSeconds, 1e-30)) peak = p;
+                std::printf(
+                    "- %2d vec4 chains per invocation: %.1f GFLOP per CPU-second, %.1f GFLOP/s "
+                    "wall\n",
+                    chains, p.flops / p.cpuSeconds * 1e-9, p.flops / p.seconds * 1e-9);
+                if (p.flops / p.cpuSeconds > peak.flops / std::max(peak.cpuSeconds, 1e-30))
+                    peak = p;
             }
             const double peakPerCpuSecond = peak.flops / peak.cpuSeconds;
             // The ray-sphere loop alone: rays that miss 8 spheres, less rays
@@ -542,18 +578,20 @@ int main(int argc, char** argv) {
             const double cpuPerTest = (time[1].cpu - time[0].cpu) / tests;
             const double peakFmaPerCpuSecond = peakPerCpuSecond / 2;  // 2 flops per FMA
             const double slotsPerCpuSecond = kSlotsPerMissedSphere / cpuPerTest;
-            std::printf("- ray-sphere loop: frames missing 1 and 8 spheres took %.3f and %.3f CPU-s "
-                        "(%.3f and %.3f s wall): %.2f CPU-ns per ray-sphere test (%.0f Mtests per "
-                        "CPU-second)\n",
-                        time[0].cpu, time[1].cpu, time[0].wall, time[1].wall, cpuPerTest * 1e9,
-                        1e-6 / cpuPerTest);
-            std::printf("- FMA peak %.2f G FMA per CPU-second; the loop issues %.2f G FMA slots per "
-                        "CPU-second counting the %.0f a miss needs = %.1f %% of the peak "
-                        "(%.1f %% counting all %.0f of the whole test)\n",
-                        peakFmaPerCpuSecond * 1e-9, slotsPerCpuSecond * 1e-9, kSlotsPerMissedSphere,
-                        100 * slotsPerCpuSecond / peakFmaPerCpuSecond,
-                        100 * kSlotsPerWholeSphereTest / cpuPerTest / peakFmaPerCpuSecond,
-                        kSlotsPerWholeSphereTest);
+            std::printf(
+                "- ray-sphere loop: frames missing 1 and 8 spheres took %.3f and %.3f CPU-s "
+                "(%.3f and %.3f s wall): %.2f CPU-ns per ray-sphere test (%.0f Mtests per "
+                "CPU-second)\n",
+                time[0].cpu, time[1].cpu, time[0].wall, time[1].wall, cpuPerTest * 1e9,
+                1e-6 / cpuPerTest);
+            std::printf(
+                "- FMA peak %.2f G FMA per CPU-second; the loop issues %.2f G FMA slots per "
+                "CPU-second counting the %.0f a miss needs = %.1f %% of the peak "
+                "(%.1f %% counting all %.0f of the whole test)\n",
+                peakFmaPerCpuSecond * 1e-9, slotsPerCpuSecond * 1e-9, kSlotsPerMissedSphere,
+                100 * slotsPerCpuSecond / peakFmaPerCpuSecond,
+                100 * kSlotsPerWholeSphereTest / cpuPerTest / peakFmaPerCpuSecond,
+                kSlotsPerWholeSphereTest);
         }
         std::printf("\ntotal %.0f s; load average %s\n", run.seconds(), loadAverage().c_str());
     } catch (const std::exception& e) {

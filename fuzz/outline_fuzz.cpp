@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "util/error.h"
 #include "scene/mesh_file.h"
+#include "util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string_view text(reinterpret_cast<const char*>(data), size);

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "render/camera.h"
-#include "util/error.h"
 #include "scene/sdl_reader.h"
+#include "util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string_view text(reinterpret_cast<const char*>(data), size);

@@ -19,6 +19,7 @@ packages=(
   xvfb xauth libx11-dev  # vkray view's tests: a virtual X server, and Xlib to look into it
   libcli11-dev  # the command lines of vkray and vkray_bench: subcommands, ranges, generated --help
   nlohmann-json3-dev  # the JSON that reports write, and that the tests read back
+  clang-format  # scripts/check-format.sh: CI checks the C++ against .clang-format
 )
 
 missing=()

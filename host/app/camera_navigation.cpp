@@ -32,7 +32,8 @@ Camera orbit(const Camera& camera, double right, double down) {
     // Over the top: the angle between up and the offset stays in [1, 179] degrees.
     const double length = glm::length(offset);
     const double polar = std::acos(std::clamp(glm::dot(offset / length, up), -1.0, 1.0));
-    const double turned = std::clamp(polar - glm::radians(down), glm::radians(1.0), glm::radians(179.0));
+    const double turned =
+        std::clamp(polar - glm::radians(down), glm::radians(1.0), glm::radians(179.0));
     const glm::dvec3 side = glm::cross(up, offset);
     if (glm::length(side) > 0) offset = rotated(offset, glm::normalize(side), turned - polar);
     Camera result = camera;

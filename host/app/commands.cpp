@@ -4,9 +4,9 @@
 #include "dist/mpi_world.h"
 #include "image/image_io.h"
 #include "render/camera.h"
-#include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
+#include "util/error.h"
 
 #include <unistd.h>
 #include <cstdio>

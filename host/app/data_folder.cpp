@@ -20,7 +20,8 @@ DataFolder findDataFolder(const std::string& besideBinary, const std::string& in
     if (ec) return found;
     for (const std::string& dir : {found.beside, found.installed}) {
         std::error_code e;
-        if (fs::is_directory(dir, e) && (mustHold.empty() || fs::exists(fs::path(dir) / mustHold, e))) {
+        if (fs::is_directory(dir, e) &&
+            (mustHold.empty() || fs::exists(fs::path(dir) / mustHold, e))) {
             found.path = dir;
             break;
         }

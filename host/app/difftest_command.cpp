@@ -11,9 +11,9 @@
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"
 #include "render/camera.h"
+#include "scene/scene_geometry.h"
 #include "util/error.h"
 #include "util/stopwatch.h"
-#include "scene/scene_geometry.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -30,8 +30,8 @@ namespace fs = std::filesystem;
 struct Verdict {
     bool agreed = false;
     bool onlyAtCheckSize = false;  // over the bound at its size, within render --check's at 160x120
-    std::string refusal;  // the GPU's error, when it refused the scene
-    std::string figures;  // what the comparison found
+    std::string refusal;           // the GPU's error, when it refused the scene
+    std::string figures;           // what the comparison found
 };
 
 // The run's GPU tracers, one per shader variant and mode, the 64 used last
@@ -43,20 +43,23 @@ class Tracers {
 public:
     Tracers(gpu::Context& context, const Options& o) : context_(context), o_(o) {}
 
-    gpu::GpuTracer& forScene(const Scene& scene, const RenderSettings& settings, Precision precision) {
+    gpu::GpuTracer& forScene(const Scene& scene, const RenderSettings& settings,
+                             Precision precision) {
         const gpu::ShaderFeatures f = gpu::featuresOf(scene, settings, o_.allFeatures);
         std::string key = precisionName(precision);
         for (bool kind : f.kinds) key += kind ? '1' : '0';
         for (bool shading : f.shading) key += shading ? '1' : '0';
         key += f.objectBvh ? '1' : '0';
-        const auto found = std::find_if(used_.begin(), used_.end(), [&](const auto& t) { return t.first == key; });
+        const auto found =
+            std::find_if(used_.begin(), used_.end(), [&](const auto& t) { return t.first == key; });
         if (found != used_.end()) {
             used_.splice(used_.begin(), used_, found);
         } else {
-            used_.emplace_front(key, std::make_unique<gpu::GpuTracer>(
-                                         context_, gpu::GpuRenderOptions{.shaderDirectory = shaderDirectoryFor(o_),
-                                                                         .allFeatures = o_.allFeatures,
-                                                                         .precision = precision}));
+            used_.emplace_front(
+                key, std::make_unique<gpu::GpuTracer>(
+                         context_, gpu::GpuRenderOptions{.shaderDirectory = shaderDirectoryFor(o_),
+                                                         .allFeatures = o_.allFeatures,
+                                                         .precision = precision}));
             if (used_.size() > kKept) used_.pop_back();
         }
         return *used_.front().second;
@@ -66,7 +69,8 @@ private:
     static constexpr std::size_t kKept = 64;
     gpu::Context& context_;
     const Options& o_;
-    std::list<std::pair<std::string, std::unique_ptr<gpu::GpuTracer>>> used_;  // the last used first
+    std::list<std::pair<std::string, std::unique_ptr<gpu::GpuTracer>>>
+        used_;  // the last used first
 };
 
 struct Comparison {
@@ -85,8 +89,8 @@ Comparison compareRenders(const Scene& scene, const RenderSettings& settings, Pr
     reference::ReferenceOptions reference;
     reference.threads = o.threads;
     const Frame cpu = reference::render(scene, basis, settings, reference);
-    CompareResult result = compareImages(colorImage(gpu), colorImage(cpu),
-                                         {kCheckFailThreshold, kCheckFailPercent});
+    CompareResult result =
+        compareImages(colorImage(gpu), colorImage(cpu), {kCheckFailThreshold, kCheckFailPercent});
     compareIds(idImage(gpu), idImage(cpu), result);
     // Counted in rays: float places a ray's hits to within a band along
     // every edge (docs/numerics.md, "Envelope"), and each ray, each of a
@@ -101,7 +105,8 @@ Comparison compareRenders(const Scene& scene, const RenderSettings& settings, Pr
     const double allowedColours = inRays ? block * std::max(1.0, share * rays * spp) : share * rays;
     const double allowedIds = inRays ? block * std::max(1.0, share * rays) : share * rays;
     char text[200];
-    std::snprintf(text, sizeof text, "%dx%d: %.3g %% of pixels over %.2g (largest %.3g), %.3g %% of ids differ",
+    std::snprintf(text, sizeof text,
+                  "%dx%d: %.3g %% of pixels over %.2g (largest %.3g), %.3g %% of ids differ",
                   settings.width, settings.height, result.percentOverThreshold, kCheckFailThreshold,
                   result.maxAbsError, result.idMismatchPercent);
     return {double(result.pixelsOverThreshold) <= allowedColours &&
@@ -120,13 +125,14 @@ Verdict judge(const std::string& path, const RandomScene& r, Tracers& tracers, c
     const Scene scene = loadScene(path, {}, nullptr);
     Verdict v;
     try {
-        const Comparison own = compareRenders(scene, {r.width, r.height, r.block, r.spp, r.sampleSeed},
-                                              r.precision, true, tracers, o);
+        const Comparison own =
+            compareRenders(scene, {r.width, r.height, r.block, r.spp, r.sampleSeed}, r.precision,
+                           true, tracers, o);
         v.agreed = own.agreed;
         v.figures = own.figures;
         if (v.agreed) return v;
-        const Comparison check = compareRenders(scene, {160, 120, 1, 1, r.sampleSeed}, r.precision,
-                                                false, tracers, o);
+        const Comparison check =
+            compareRenders(scene, {160, 120, 1, 1, r.sampleSeed}, r.precision, false, tracers, o);
         v.onlyAtCheckSize = check.agreed;
         v.figures += "; " + check.figures;
     } catch (const gpu::BeyondTheLoopLimit& refused) {  // right or refused: refused, and said
@@ -138,8 +144,8 @@ Verdict judge(const std::string& path, const RandomScene& r, Tracers& tracers, c
 std::string commandFor(const std::string& path, const RandomScene& r) {
     return "vkray render " + path + " --size " + std::to_string(r.width) + "x" +
            std::to_string(r.height) + " --spp " + std::to_string(r.spp) + " --seed " +
-           std::to_string(r.sampleSeed) + " --block " + std::to_string(r.block) +
-           " --precision " + precisionName(r.precision) + " --check";
+           std::to_string(r.sampleSeed) + " --block " + std::to_string(r.block) + " --precision " +
+           precisionName(r.precision) + " --check";
 }
 
 }  // namespace
@@ -169,13 +175,14 @@ int runDifftest(const Options& o, std::ostream& out, std::ostream& err) {
         }
         if (!v.refusal.empty()) {
             ++refused;
-            out << "refused  seed " << seed << ": " << v.refusal << "\n  scene: " << path << std::endl;
+            out << "refused  seed " << seed << ": " << v.refusal << "\n  scene: " << path
+                << std::endl;
             continue;
         }
         if (v.onlyAtCheckSize) {
             ++onlyAtCheckSize[r.precision];
-            out << "at 160x120 only: seed " << seed << " (" << precisionName(r.precision) << "): " << v.figures
-                << "\n  " << commandFor(path, r) << std::endl;
+            out << "at 160x120 only: seed " << seed << " (" << precisionName(r.precision)
+                << "): " << v.figures << "\n  " << commandFor(path, r) << std::endl;
             continue;
         }
         ++disagreed;
@@ -188,11 +195,13 @@ int runDifftest(const Options& o, std::ostream& out, std::ostream& err) {
         << int(seconds + 0.5) << " s:";
     for (const auto& [mode, n] : drawn) {
         out << " " << precisionName(mode) << " " << agreed[mode] << " of " << n << " agreed";
-        if (onlyAtCheckSize[mode] > 0) out << " (and " << onlyAtCheckSize[mode] << " at 160x120 only)";
+        if (onlyAtCheckSize[mode] > 0)
+            out << " (and " << onlyAtCheckSize[mode] << " at 160x120 only)";
         out << ";";
     }
     out << " " << refused << " refused by the GPU with an error\n";
-    out << "difftest: " << o.difftestScenes - disagreed - refused << " passed, " << disagreed << " failed\n";
+    out << "difftest: " << o.difftestScenes - disagreed - refused << " passed, " << disagreed
+        << " failed\n";
     (void)err;
     return disagreed > 0 ? 2 : 0;
 }

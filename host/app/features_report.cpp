@@ -32,7 +32,8 @@ std::string listCounts(const std::map<ShapeType, int>& counts, bool booleans) {
 template <typename T>
 std::string arrayBytes(const std::vector<T>& items) {
     if (items.empty())
-        return "empty (one " + std::to_string(sizeof(T)) + "-byte element: Vulkan has no empty buffers)";
+        return "empty (one " + std::to_string(sizeof(T)) +
+               "-byte element: Vulkan has no empty buffers)";
     return std::to_string(items.size() * sizeof(T)) + " bytes (" + std::to_string(items.size()) +
            " x " + std::to_string(sizeof(T)) + ")";
 }
@@ -56,7 +57,8 @@ std::string bufferSize(std::uint32_t binding, const gpu::GpuScene& packed, const
                "-byte rays";
     case BINDING_DEBUG:
         return std::to_string(sizeof(GpuDebugHeader) +
-                              (scene.objects.size() + scene.lights.size()) * sizeof(GpuDebugEntry)) +
+                              (scene.objects.size() + scene.lights.size()) *
+                                  sizeof(GpuDebugEntry)) +
                " bytes";
     case BINDING_OBJECT_NODES: return arrayBytes(packed.objectNodes);
     case BINDING_OBJECT_INDEX: return arrayBytes(packed.objectIndex);
@@ -87,7 +89,9 @@ std::string number(double value) {
     return text;
 }
 
-std::string yesNo(bool on) { return on ? "yes" : "no"; }
+std::string yesNo(bool on) {
+    return on ? "yes" : "no";
+}
 
 // "1 light", "3 lights".
 std::string count(std::size_t n, const std::string& noun) {
@@ -104,12 +108,16 @@ std::string secondaryRays(bool on, const Scene& scene, const char* property, dou
         highest = std::max(highest, o.material.*field);
         above += o.material.*field > threshold ? 1 : 0;
     });
-    const std::string rule = std::string(property) + " > " + thresholdName + " " + number(threshold);
+    const std::string rule =
+        std::string(property) + " > " + thresholdName + " " + number(threshold);
     std::string why;
     const std::string some = count(std::size_t(above), "object") + " with " + rule;
-    if (above == 0) why = "no object has " + rule + " (highest " + number(highest) + ")";
-    else if (scene.maxRecursionDepth == 0) why = some + ", but maxRecursionDepth 0";
-    else why = some + ", maxRecursionDepth " + std::to_string(scene.maxRecursionDepth);
+    if (above == 0)
+        why = "no object has " + rule + " (highest " + number(highest) + ")";
+    else if (scene.maxRecursionDepth == 0)
+        why = some + ", but maxRecursionDepth 0";
+    else
+        why = some + ", maxRecursionDepth " + std::to_string(scene.maxRecursionDepth);
     return yesNo(on) + " (" + why + ")";
 }
 
@@ -126,13 +134,15 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     for (const auto& mesh : scene.meshes) triangles += mesh->triangles.size();
 
     std::ostringstream out;
-    out << "scene: " << (scene.path.empty() ? "(text)" : scene.path) << " ("
-        << scene.objects.size() << " objects, " << scene.lights.size() << " lights)\n";
+    out << "scene: " << (scene.path.empty() ? "(text)" : scene.path) << " (" << scene.objects.size()
+        << " objects, " << scene.lights.size() << " lights)\n";
     out << "shapes: " << listCounts(counts, false) << "\n";
     out << "booleans: " << listCounts(counts, true) << "\n";
     out << "meshes: ";
-    if (scene.meshes.empty()) out << "none\n";
-    else out << scene.meshes.size() << " (" << triangles << " triangles)\n";
+    if (scene.meshes.empty())
+        out << "none\n";
+    else
+        out << scene.meshes.size() << " (" << triangles << " triangles)\n";
     out << "object BVH: " << (features.objectBvh ? "yes" : "no") << " (" << bounded
         << " bounded objects; more than " << gpu::kObjectBvhThreshold << " get one)\n";
     out << "lights: " << scene.lights.size() << "\n";
@@ -149,12 +159,15 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     // Whether each kind of secondary ray can ever be traced (shader_variant.cpp's rules).
     const gpu::ShaderFeatures needed = gpu::featuresOf(scene, settings, false);
     std::string shadows;
-    if (scene.objects.empty()) shadows = "no (no objects)";
-    else if (scene.lights.empty()) shadows = "no (no lights)";
+    if (scene.objects.empty())
+        shadows = "no (no objects)";
+    else if (scene.lights.empty())
+        shadows = "no (no lights)";
     else if (!needed.has(gpu::Shading::Shadows))
         shadows = "no (one plane or square: no feeler can meet it again)";
-    else shadows = "yes (" + count(scene.lights.size(), "light") + ", " +
-                   count(scene.objects.size(), "object") + ")";
+    else
+        shadows = "yes (" + count(scene.lights.size(), "light") + ", " +
+                  count(scene.objects.size(), "object") + ")";
     out << "shadows: " << shadows << "\n";
     out << "reflection: "
         << secondaryRays(needed.has(gpu::Shading::Reflection), scene, "reflectivity",

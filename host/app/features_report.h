@@ -3,8 +3,8 @@
 // tracer calls), and the buffers that variant binds and uploads.
 #pragma once
 
-#include "gpu/shader_variant.h"
 #include "gpu/precision.h"
+#include "gpu/shader_variant.h"
 #include "scene/scene.h"
 
 #include <string>

@@ -24,32 +24,18 @@ namespace {
 // The command itself, on this rank.
 int runOnRank(const Options& o, std::ostream& out, std::ostream& err) {
     switch (o.command) {
-        case Command::Help:
-            out << o.helpText;
-            return 0;
-        case Command::Version:
-            out << "vkray 0.1.0\nMPI: " << dist::World::support() << "\n";
-            return 0;
-        case Command::Render:
-            return runRender(o, out, err);
-        case Command::Pixel:
-            return runPixel(o, out, err);
-        case Command::ShadersCheck:
-            return runShadersCheck(o, out, err);
-        case Command::Compare:
-            return runCompare(o, out);
-        case Command::Devices:
-            return runDevices(out);
-        case Command::Stress:
-            return runStress(o, out, err);
-        case Command::Difftest:
-            return runDifftest(o, out, err);
-        case Command::Report:
-            return runReport(o, out, err);
-        case Command::Features:
-            return runFeatures(o, out, err);
-        case Command::View:
-            return runView(o, out, err);
+    case Command::Help: out << o.helpText; return 0;
+    case Command::Version: out << "vkray 0.1.0\nMPI: " << dist::World::support() << "\n"; return 0;
+    case Command::Render: return runRender(o, out, err);
+    case Command::Pixel: return runPixel(o, out, err);
+    case Command::ShadersCheck: return runShadersCheck(o, out, err);
+    case Command::Compare: return runCompare(o, out);
+    case Command::Devices: return runDevices(out);
+    case Command::Stress: return runStress(o, out, err);
+    case Command::Difftest: return runDifftest(o, out, err);
+    case Command::Report: return runReport(o, out, err);
+    case Command::Features: return runFeatures(o, out, err);
+    case Command::View: return runView(o, out, err);
     }
     return 1;
 }

@@ -16,7 +16,20 @@
 
 namespace vkray {
 
-enum class Command { Help, Version, Render, Pixel, Compare, Devices, ShadersCheck, Stress, Report, Features, Difftest, View };
+enum class Command {
+    Help,
+    Version,
+    Render,
+    Pixel,
+    Compare,
+    Devices,
+    ShadersCheck,
+    Stress,
+    Report,
+    Features,
+    Difftest,
+    View
+};
 
 // The largest image vkray renders: each side at most kMaxRenderSide and at
 // most kMaxRenderPixels in all (a Frame costs 32 bytes a pixel on the host).
@@ -32,10 +45,10 @@ struct Options {
     std::string outputPath;  // -o; default: the scene's name with .png, in the current folder
     int width = 640;
     int height = 480;
-    int device = -1;         // --device N; -1 = automatic choice
+    int device = -1;  // --device N; -1 = automatic choice
     int block = 1;
-    int spp = 1;              // --spp N: samples per pixel (anti-aliasing)
-    std::uint32_t seed = 0;   // --seed S: the sample positions' seed
+    int spp = 1;             // --spp N: samples per pixel (anti-aliasing)
+    std::uint32_t seed = 0;  // --seed S: the sample positions' seed
     std::string aovPrefix;
     bool cpu = false;
     bool check = false;

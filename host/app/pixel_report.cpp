@@ -24,7 +24,9 @@ std::string show(double v, int digits) {
 std::string show(const glm::dvec3& v, int digits) {
     return "(" + show(v.x, digits) + ", " + show(v.y, digits) + ", " + show(v.z, digits) + ")";
 }
-std::string show(const std::optional<double>& t, int digits) { return t ? show(*t, digits) : "miss"; }
+std::string show(const std::optional<double>& t, int digits) {
+    return t ? show(*t, digits) : "miss";
+}
 
 std::string feelerText(const PixelTrace::LightTerms& terms) {
     if (!terms.feelerMet) return "not traced";
@@ -88,7 +90,8 @@ std::string formatPixelReport(const Scene& scene, const RenderSettings& settings
     const size_t objects = std::min(gpu.objects.size(), cpu.objects.size());
     for (size_t i = 0; i < objects; ++i) {
         table.text_ += objectName(scene, int(i)) + "\n";
-        table.row("  generic origin", gpu.objects[i].genericOrigin, g, cpu.objects[i].genericOrigin, c);
+        table.row("  generic origin", gpu.objects[i].genericOrigin, g, cpu.objects[i].genericOrigin,
+                  c);
         table.row("  generic direction", gpu.objects[i].genericDirection, g,
                   cpu.objects[i].genericDirection, c);
         table.row("  t", gpu.objects[i].t, g, cpu.objects[i].t, c);

@@ -1,18 +1,18 @@
 #include "app/progress.h"
 
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <unistd.h>
 
 namespace vkray {
 
 namespace {
 
-constexpr double kQuietStart = 1.0;         // seconds before anything is shown
-constexpr double kLineInterval = 1.0;       // Lines: at most one a second
-constexpr double kRedrawInterval = 0.1;     // Terminal: at most ten redraws a second
+constexpr double kQuietStart = 1.0;      // seconds before anything is shown
+constexpr double kLineInterval = 1.0;    // Lines: at most one a second
+constexpr double kRedrawInterval = 0.1;  // Terminal: at most ten redraws a second
 constexpr int kBarWidth = 20;
 
 double steadySeconds() {
@@ -40,7 +40,10 @@ ProgressDisplay::Style ProgressDisplay::styleForStderr(bool quiet) {
 }
 
 ProgressDisplay::ProgressDisplay(std::ostream& out, Style style, std::string label, Clock clock)
-    : out_(out), style_(style), label_(std::move(label)), clock_(clock ? std::move(clock) : steadySeconds) {}
+    : out_(out),
+      style_(style),
+      label_(std::move(label)),
+      clock_(clock ? std::move(clock) : steadySeconds) {}
 
 ProgressDisplay::~ProgressDisplay() {
     // Left open by an error or an interruption: end the line so that the
@@ -85,7 +88,8 @@ void ProgressDisplay::update(std::size_t done, std::size_t total) {
         lastDecile_ = percent / 10;
         lastShown_ = now;
         out_ << label_ << ": " << percent << "% (" << done << " of " << total << " rays), "
-             << figures(done, total, now) << "\n" << std::flush;
+             << figures(done, total, now) << "\n"
+             << std::flush;
         return;
     }
     if (shown_ && now - lastShown_ < kRedrawInterval && done < total) return;

@@ -43,7 +43,7 @@ private:
     std::string label_;
     Clock clock_;
     std::mutex mutex_;
-    double start_ = -1;     // the first update's time
+    double start_ = -1;  // the first update's time
     // The first piece of work done: the time left is estimated from the rate
     // after it, since the first piece also pays for start-up (lavapipe
     // compiles the shader at the first dispatch).

@@ -60,7 +60,9 @@ std::string num(double v, bool precise = false) {
 
 // What the scene reader reads back from num(v): every figure below is
 // computed from the scene as written.
-double written(double v, bool precise = false) { return std::strtod(num(v, precise).c_str(), nullptr); }
+double written(double v, bool precise = false) {
+    return std::strtod(num(v, precise).c_str(), nullptr);
+}
 dvec3 written(dvec3 v, bool precise = false) {
     return {written(v.x, precise), written(v.y, precise), written(v.z, precise)};
 }
@@ -69,9 +71,9 @@ std::string triple(dvec3 v, bool precise = false) {
     return num(v.x, precise) + " " + num(v.y, precise) + " " + num(v.z, precise);
 }
 
-const char* const kPlainShapes[] = {"sphere", "cube", "cylinder", "cone", "torus",
-                                    "tetrahedron", "octahedron", "dodecahedron", "icosahedron",
-                                    "square"};
+const char* const kPlainShapes[] = {"sphere",      "cube",        "cylinder",   "cone",
+                                    "torus",       "tetrahedron", "octahedron", "dodecahedron",
+                                    "icosahedron", "square"};
 const double kTapers[] = {-1, -0.5, 0, 0.3, 1, 2};
 
 // A convex pyramid in Hill's 3VN: 5 vertices, 5 face normals, 5 faces.
@@ -93,7 +95,8 @@ struct Rotation {
 
 // R^T v for the scene reader's `rotate degrees axis` (glm::rotate).
 dvec3 unrotate(const Rotation& r, dvec3 v) {
-    const glm::dmat4 m = glm::rotate(glm::dmat4(1.0), glm::radians(r.degrees), glm::normalize(r.axis));
+    const glm::dmat4 m =
+        glm::rotate(glm::dmat4(1.0), glm::radians(r.degrees), glm::normalize(r.axis));
     return dvec3(glm::transpose(m) * glm::dvec4(v, 0.0));
 }
 
@@ -108,16 +111,16 @@ struct Placed {
     dvec3 scale{1.0};
     bool secondRotation = false;
     Rotation second;
-    int squashAxis = -1;  // the axis squashed (-1: none)
+    int squashAxis = -1;   // the axis squashed (-1: none)
     bool precise = false;  // written with every digit (the near view's huge object)
     bool plane = false, boolean = false;
     double transparency = 0;
     std::string body;      // the shape word(s), or the boolean's lines
     std::string material;  // every material word but transparency, speedOfLight and the texture
     double speedOfLight = 1;
-    int texture = 0;       // 0 none, 1 checkerboard, 2 wood
-    double cell = 1;       // the texture's cell size or ring width
-    dvec3 odd{0.0};        // its odd cells' or rings' colour
+    int texture = 0;  // 0 none, 1 checkerboard, 2 wood
+    double cell = 1;  // the texture's cell size or ring width
+    dvec3 odd{0.0};   // its odd cells' or rings' colour
 
     bool squashedBetweenRotations() const { return squashAxis >= 0 && secondRotation; }
     // Eases the squash a step (the smallest scale a quarter larger, at most
@@ -158,7 +161,8 @@ struct Placed {
     double stretch() const { return boolean ? kBooleanChildStretch : 1; }
 
     std::string text() const {
-        std::string t = material + " transparency " + num(transparency) + " speedOfLight " + num(speedOfLight);
+        std::string t =
+            material + " transparency " + num(transparency) + " speedOfLight " + num(speedOfLight);
         if (texture == 0) {
             t += " texture 0\n";
         } else {
@@ -215,7 +219,8 @@ public:
         const bool squash = d_.chance(.4);
         p.secondRotation = d_.chance(squash ? .4 : .2);
         if (squash) {
-            const double smallest = p.secondRotation ? env_.smallestSquash : env_.smallestInnerSquash;
+            const double smallest =
+                p.secondRotation ? env_.smallestSquash : env_.smallestInnerSquash;
             const double ratio = d_.chance(.5) ? d_.logRange(smallest, 1) : d_.logRange(.2, 1);
             p.squashAxis = d_.below(3);
             s[p.squashAxis] *= ratio;
@@ -238,7 +243,8 @@ public:
 
     dvec3 axis() {
         const double x = d_.range(-1, 1), y = d_.range(-1, 1), z = d_.range(-1, 1);
-        return (std::abs(x) + std::abs(y) + std::abs(z) < 1e-3) ? dvec3(0, 1, 0) : written(dvec3(x, y, z));
+        return (std::abs(x) + std::abs(y) + std::abs(z) < 1e-3) ? dvec3(0, 1, 0)
+                                                                : written(dvec3(x, y, z));
     }
 
     bool usesMesh = false;
@@ -255,7 +261,8 @@ double farDistance(const std::vector<Placed>& objects, dvec3 direction, double s
                    const EnvelopeLimits& env, double nearest) {
     const auto farthest = [&](double distance) {
         double most = 0;
-        for (const Placed& p : objects) most = std::max(most, p.eyeInSizes(direction * distance, size));
+        for (const Placed& p : objects)
+            most = std::max(most, p.eyeInSizes(direction * distance, size));
         return most / env.farthestEye;
     };
     double lo = nearest, hi = env.farthestWorldEye * (1 - 1e-5);  // its six digits may round up
@@ -316,8 +323,10 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
         // A unit sphere at the origin from D radii, filling the view; or
         // checkered with cells s, D / s up to the envelope's per cell.
         const bool checkered = kind == 1;
-        const double cell = written(d.chance(.3) ? .05 : d.logRange(.05, .5));  // the sweep's cells: 0.05
-        const double most = checkered ? std::min(env.farthestEye, env.farthestPerCell * cell) : env.farthestEye;
+        const double cell =
+            written(d.chance(.3) ? .05 : d.logRange(.05, .5));  // the sweep's cells: 0.05
+        const double most =
+            checkered ? std::min(env.farthestEye, env.farthestPerCell * cell) : env.farthestEye;
         const double distance = toward(d, 2, std::min(most, env.farthestWorldEye * (1 - 1e-5)));
         eye = written(direction * distance);
         // Looking a little beside the centre: looking at it, the image is
@@ -342,8 +351,9 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
         const bool after = kind == 2;
         // fp64's teapot goes to its own figure (beyond, one ray runs past
         // llvmpipe's loop limit: refused).
-        const double smallest = !after ? env.smallestInnerSquash
-                                : shape == 3 ? std::max(env.smallestSquash, 1e-5) : env.smallestSquash;
+        const double smallest = !after       ? env.smallestInnerSquash
+                                : shape == 3 ? std::max(env.smallestSquash, 1e-5)
+                                             : env.smallestSquash;
         const double ratio = written(1 / toward(d, 1, 1 / smallest));
         const double a = d.range(1, 2), b = d.range(1, 2);
         const dvec3 scale = written(dvec3(a, b, ratio * std::max(a, b)));
@@ -354,10 +364,12 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
         eye = written(from * d.range(4, 7));
         light = eye * 1.5 + dvec3(0, 4, 0);
         look = written(d.vec(-.3, .3));
-        objects = material + " texture 0\npush " + (after ? squash + " " + rotate : rotate + " " + squash) +
-                  " " + shapes[shape] + " pop\n";
+        objects = material + " texture 0\npush " +
+                  (after ? squash + " " + rotate : rotate + " " + squash) + " " + shapes[shape] +
+                  " pop\n";
         // M^-1 eye: S^-1 R^T eye after the rotation, R^T S^-1 eye before it.
-        const dvec3 generic = after ? unrotate(rotation, eye / scale) : unrotate(rotation, eye) / scale;
+        const dvec3 generic =
+            after ? unrotate(rotation, eye / scale) : unrotate(rotation, eye) / scale;
         r.reach.generic = glm::length(generic);
         r.genericEye.push_back(r.reach.generic);
         (after ? r.reach.squash : r.reach.innerSquash) = scale.z / std::max(scale.x, scale.y);
@@ -367,8 +379,9 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
         // envelope's for the sphere; the cylinder and the torus to the
         // figures measured for them (radius 3000 from 0.07; tube 500 from 0.05).
         const int shape = kind == 4 ? 0 : 1 + d.below(2);
-        const double ratioLimit = shape == 0 ? env.largestNearRatio
-                                  : std::min(env.largestNearRatio, shape == 1 ? 3000 / 0.07 : 500 / 0.05);
+        const double ratioLimit =
+            shape == 0 ? env.largestNearRatio
+                       : std::min(env.largestNearRatio, shape == 1 ? 3000 / 0.07 : 500 / 0.05);
         const double radius = written(d.logRange(100, 1e5), true);
         const double ratio = toward(d, 10, ratioLimit);
         const double height = radius / ratio;
@@ -379,20 +392,22 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
             // twice.
             const dvec3 tilt = d.vec({-.05, 1, -.05}, {.05, 1, .05});
             eye = (radius + height) * glm::normalize(tilt);
-            objects = material + " texture 0\npush scale " + triple(dvec3(radius), true) + " sphere pop\n";
+            objects = material + " texture 0\npush scale " + triple(dvec3(radius), true) +
+                      " sphere pop\n";
             r.genericEye.push_back((radius + height) / radius);
         } else if (shape == 1) {
             // The wall x^2 + y^2 = R^2 of a long cylinder along z.
             eye = dvec3(0, radius + height, 0);
-            objects = material + " texture 0\npush translate 0 0 " + num(-5 * radius, true) + " scale " +
-                      num(radius, true) + " " + num(radius, true) + " " + num(10 * radius, true) +
-                      " cylinder pop\n";
+            objects = material + " texture 0\npush translate 0 0 " + num(-5 * radius, true) +
+                      " scale " + num(radius, true) + " " + num(radius, true) + " " +
+                      num(10 * radius, true) + " cylinder pop\n";
             r.genericEye.push_back(glm::length(dvec3(0, eye.y / radius, 5.0 / 10.0)));
         } else {
             // The outer equator of a torus of tube radius R (its centre circle 4 R).
             eye = dvec3(0, radius + height, 0);
             objects = material + " texture 0\npush translate 0 " + num(-4 * radius, true) +
-                      " 0 rotate 90 0 1 0 scale " + triple(dvec3(4 * radius), true) + " torus pop\n";
+                      " 0 rotate 90 0 1 0 scale " + triple(dvec3(4 * radius), true) +
+                      " torus pop\n";
             r.genericEye.push_back((eye.y + 4 * radius) / (4 * radius));
         }
         eye = written(eye, true);
@@ -411,14 +426,15 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
         const dvec3 ball = written(look + dvec3(0, .4, 0));
         objects = "diffuse " + colour(.2, .9);
         objects += " reflectivity " + num(d.range(.6, .95)) +
-                  "\npush rotate -90 1 0 0 scale 1e7 1e7 1e7 plane pop\n" + material +
-                  " texture 0\npush translate " + triple(ball) + " scale 0.4 0.4 0.4 sphere pop\n";
+                   "\npush rotate -90 1 0 0 scale 1e7 1e7 1e7 plane pop\n" + material +
+                   " texture 0\npush translate " + triple(ball) + " scale 0.4 0.4 0.4 sphere pop\n";
         r.genericEye.push_back(height / 1e7);
         r.genericEye.push_back(glm::length(eye - ball) / 0.4);
         r.reach.worldEye = height;
     }
-    r.sdl = "camera eye " + triple(eye, precise) + " look " + triple(look, precise) + " up 0 1 0 fov " +
-            num(fov) + "\n" + head + "light " + triple(light, precise) + " " + colour(.5, 1) + "\n" + objects;
+    r.sdl = "camera eye " + triple(eye, precise) + " look " + triple(look, precise) +
+            " up 0 1 0 fov " + num(fov) + "\n" + head + "light " + triple(light, precise) + " " +
+            colour(.5, 1) + "\n" + objects;
 }
 
 }  // namespace
@@ -493,8 +509,8 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
         } else if (kind <= 2) {
             // A boolean of two primitives (convex meshes only: the polyhedra).
             const char* ops[] = {"union", "intersection", "difference"};
-            const char* solids[] = {"sphere", "cube", "cylinder", "cone", "octahedron",
-                                    "taperedCylinder 0.5"};
+            const char* solids[] = {"sphere", "cube",       "cylinder",
+                                    "cone",   "octahedron", "taperedCylinder 0.5"};
             w.placement(p, at, size);
             p.boolean = true;
             p.body = ops[d.below(3)];
@@ -510,9 +526,9 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
             // (That of a cylinder, cone, square or the pyramid lies on its
             // surface: an eye there sees hits at t = 0.)
             const std::string& s = p.body;
-            const bool centred = s == "sphere" || s == "cube" || s == "torus" || s == "tetrahedron" ||
-                                 s == "octahedron" || s == "dodecahedron" || s == "icosahedron" ||
-                                 s == "buckyball";
+            const bool centred = s == "sphere" || s == "cube" || s == "torus" ||
+                                 s == "tetrahedron" || s == "octahedron" || s == "dodecahedron" ||
+                                 s == "icosahedron" || s == "buckyball";
             if (p.squashAxis < 0 && centred) centres.push_back(p.at);
         }
         objects.push_back(p);
@@ -564,8 +580,9 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
         precise = true;
         // The eye is inside none of the others (within twice its size of its centre).
         std::erase_if(objects, [&](const Placed& p) {
-            return !p.precise && !p.plane && glm::length(eye - p.at) < 2 * p.largestScale() *
-                                                 (p.boolean ? kBooleanChildStretch : 1);
+            return !p.precise && !p.plane &&
+                   glm::length(eye - p.at) <
+                       2 * p.largestScale() * (p.boolean ? kBooleanChildStretch : 1);
         });
     } else if (view < 6) {
         const double r0 = extent * d.range(2.5, 6);
@@ -599,13 +616,14 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
         while (p.squashAxis >= 0 && p.silhouetteReach(eye, extent) > env.farthestGeneric)
             if (!p.ease()) break;
         while (p.thin() && p.thinPerDistance(eye) < env.thinnestPerDistance)
-            if (!p.ease()) p.transparency = 0.3;  // still too thin for its distance: clear, not glass
+            if (!p.ease())
+                p.transparency = 0.3;  // still too thin for its distance: clear, not glass
         if (p.texture != 0 && p.perCell(eye) > env.farthestPerCell)
             p.cell = written(p.cell * p.perCell(eye) / env.farthestPerCell * 1.01);
     }
 
-    std::string sdl = "camera eye " + triple(eye, precise) + " look " + triple(look) + " up 0 1 0 fov " +
-                      num(fov) + "\n" + head;
+    std::string sdl = "camera eye " + triple(eye, precise) + " look " + triple(look) +
+                      " up 0 1 0 fov " + num(fov) + "\n" + head;
     for (const Placed& p : objects) {
         sdl += p.text();
         r.genericEye.push_back(p.genericEye(eye));
@@ -618,7 +636,8 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
             r.reach.eye = std::max(r.reach.eye, p.silhouetteReach(eye, extent));
         }
         if (p.texture != 0) r.reach.perCell = std::max(r.reach.perCell, p.perCell(eye));
-        if (p.thin()) r.reach.thinPerDistance = std::min(r.reach.thinPerDistance, p.thinPerDistance(eye));
+        if (p.thin())
+            r.reach.thinPerDistance = std::min(r.reach.thinPerDistance, p.thinPerDistance(eye));
     }
     r.reach.worldEye = glm::length(eye);
     r.sdl = sdl + lightLines;

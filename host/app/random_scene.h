@@ -51,20 +51,20 @@ SceneEnvelope envelopeOf(Precision precision);
 // of its objects reaches; 0, or 1 for the squashes, when none does), in the
 // terms of EnvelopeLimits.
 struct SceneReach {
-    double eye = 0;          // largest distance in object sizes
-    double generic = 0;      // largest |M^-1 eye| of an object squashed between rotations
-    double perCell = 0;      // largest |M^-1 eye| / cell
-    double worldEye = 0;     // |eye|
-    double squash = 1;       // smallest ratio of scales, squashed between rotations
-    double innerSquash = 1;  // smallest ratio of scales, squashed before the rotation
-    double nearRatio = 0;    // R / H of the huge object the eye is close above (0: none)
+    double eye = 0;                  // largest distance in object sizes
+    double generic = 0;              // largest |M^-1 eye| of an object squashed between rotations
+    double perCell = 0;              // largest |M^-1 eye| / cell
+    double worldEye = 0;             // |eye|
+    double squash = 1;               // smallest ratio of scales, squashed between rotations
+    double innerSquash = 1;          // smallest ratio of scales, squashed before the rotation
+    double nearRatio = 0;            // R / H of the huge object the eye is close above (0: none)
     double thinPerDistance = 1e300;  // smallest thickness / distance of a refracting solid
 };
 
 struct RandomScene {
-    bool lone = false;      // a lone object (SceneEnvelope::lone), else several
-    std::string sdl;        // the scene, with a camera
-    std::string meshFile;   // the 3VN file it names ("" when none), to write beside it
+    bool lone = false;     // a lone object (SceneEnvelope::lone), else several
+    std::string sdl;       // the scene, with a camera
+    std::string meshFile;  // the 3VN file it names ("" when none), to write beside it
     std::string meshText;
     int width = 32, height = 24, block = 1, spp = 1;
     std::uint32_t sampleSeed = 0;

@@ -12,9 +12,9 @@
 #include "image/metrics.h"
 #include "reference/reference_tracer.h"
 #include "render/camera.h"
-#include "util/error.h"
 #include "render/render_progress.h"
 #include "scene/scene_geometry.h"
+#include "util/error.h"
 #include "util/stopwatch.h"
 
 #include <algorithm>
@@ -155,7 +155,8 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
         fs::path(output).lexically_normal() == fs::path(o.aovPrefix).lexically_normal();
     if (!imageInAovs) stageImage(files, output, colorImage(frame));
     if (!o.aovPrefix.empty())
-        stageAovs(files, o.aovPrefix, frame,
+        stageAovs(
+            files, o.aovPrefix, frame,
             isExrPath(o.aovPrefix) ? hitPoints(frame, camera, settings) : std::vector<glm::vec3>{});
     if (stopRequested()) throw Interrupted();
     files.commit();

@@ -9,8 +9,8 @@
 #include "numerics/stress_pictures.h"
 #include "numerics/stress_report.h"
 #include "numerics/stress_suite.h"
-#include "util/error.h"
 #include "scene/scene_geometry.h"
+#include "util/error.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -64,7 +64,8 @@ void prepareOutDirectory(const std::string& directory) {
 }  // namespace
 
 int runStress(const Options& o, std::ostream& out, std::ostream& err) {
-    const std::vector<numerics::StressCase> cases = numerics::findStressCases(casesDirectory(o), o.casesPattern);
+    const std::vector<numerics::StressCase> cases =
+        numerics::findStressCases(casesDirectory(o), o.casesPattern);
     const std::string outDirectory = o.outDirectory.empty() ? "stress-report" : o.outDirectory;
     prepareOutDirectory(outDirectory);
     const dist::World& world = dist::World::current();
@@ -112,8 +113,9 @@ int runStress(const Options& o, std::ostream& out, std::ostream& err) {
             ++notRun;
             continue;
         }
-        const auto c = std::find_if(cases.begin(), cases.end(),
-                                    [&](const numerics::StressCase& sc) { return sc.name == m.caseName; });
+        const auto c =
+            std::find_if(cases.begin(), cases.end(),
+                         [&](const numerics::StressCase& sc) { return sc.name == m.caseName; });
         const bool expectPass = m.mode != "naive" || !c->naiveFails;
         if (numerics::withinBounds(m) == expectPass) {
             ++expected;
@@ -123,8 +125,7 @@ int runStress(const Options& o, std::ostream& out, std::ostream& err) {
         out << "unexpected: " << m.caseName << " " << m.mode
             << (expectPass ? " is beyond its bounds\n" : " passes a case built to break it\n");
     }
-    for (const std::string& line : numerics::notRunSummary(rows, cases.size()))
-        out << line << "\n";
+    for (const std::string& line : numerics::notRunSummary(rows, cases.size())) out << line << "\n";
     if (notRun > 0)
         out << "  a mode that did not run is not a pass: run on a device that has what it needs "
                "(`vkray devices`), or ask for the other modes with --precision MODE\n";
@@ -158,7 +159,8 @@ int runReport(const Options& o, std::ostream& out, std::ostream& err) {
     options.shaderDirectory = shaderDirectoryFor(o);
     options.threads = o.threads;
     if (o.precisionGiven) options.precision = o.precision;
-    const std::vector<numerics::SweepPoint> points = numerics::runSweep(scene, camera, context, options, &err);
+    const std::vector<numerics::SweepPoint> points =
+        numerics::runSweep(scene, camera, context, options, &err);
     if (world.rank() != 0) return 0;  // rank 0 reports
     const numerics::Report report = numerics::sweepReport(o.scenePath, points, device);
     out << numerics::formatTable(report.table);

@@ -43,7 +43,9 @@ std::string fixed(double value, int digits) {
     return text;
 }
 
-std::string firstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
+std::string firstLine(const std::string& text) {
+    return text.substr(0, text.find('\n'));
+}
 
 bool sameCamera(const Camera& a, const Camera& b) {
     return a.eye == b.eye && a.look == b.look && a.up == b.up && a.fovDegrees == b.fovDegrees;
@@ -143,9 +145,13 @@ class ViewSession {
 public:
     ViewSession(const Options& o, const std::vector<ViewEvent>& script, std::ostream& out,
                 std::ostream& err)
-        : o_(o), out_(out), err_(err), shaders_(shaderDirectoryFor(o)),
+        : o_(o),
+          out_(out),
+          err_(err),
+          shaders_(shaderDirectoryFor(o)),
           window_(o.width, o.height, "vkray view " + o.scenePath),
-          context_(gpu::ContextOptions{o.device, o.validation, 0, window_.surfaceExtensions(), true}),
+          context_(
+              gpu::ContextOptions{o.device, o.validation, 0, window_.surfaceExtensions(), true}),
           tracer_(context_, gpuRenderOptions(o)),
           presenter_(context_, shaders_, window_.surfaceMaker(), o.width, o.height),
           passes_(viewProgression(o.width, o.height, o.spp, o.seed)) {
@@ -201,7 +207,8 @@ private:
         } catch (const Error& e) {
             report(e.what());
             sceneError_ = e.what();
-            if (!first) err_ << "vkray: kept the last good image; fix the error and save to retry\n";
+            if (!first)
+                err_ << "vkray: kept the last good image; fix the error and save to retry\n";
         }
         updateTitle();
     }
@@ -256,9 +263,10 @@ private:
         try {
             const CameraBasis basis = makeCameraBasis(camera_, o_.width, o_.height);
             gpu::GpuRenderStats stats;
-            tracer_.render(*scene_, basis, pass.settings, &stats,
-                           [this](std::size_t done, std::size_t total) { return betweenTiles(done, total); },
-                           &remaining_);
+            tracer_.render(
+                *scene_, basis, pass.settings, &stats,
+                [this](std::size_t done, std::size_t total) { return betweenTiles(done, total); },
+                &remaining_);
             remaining_.clear();
             ++nextPass_;
             ++passesSinceRestart_;
@@ -287,8 +295,10 @@ private:
         tileTotal_ = std::max<std::size_t>(total, 1);
         // The window follows the tiles at 10 frames a second at most: a
         // composition of the whole view costs more than a small tile.
-        if (done > 0 && Clock::now() - lastShown_ >= std::chrono::milliseconds(100)) show();
-        else updateTitle();
+        if (done > 0 && Clock::now() - lastShown_ >= std::chrono::milliseconds(100))
+            show();
+        else
+            updateTitle();
         handle(window_.events());
         if (watcher_ && watcher_->changed()) reloadDue_ = true;
         if (stopRequested()) quit_ = true;
@@ -318,13 +328,20 @@ private:
     }
 
     void key(const std::string& k) {
-        if (k == "q" || k == "esc") quit_ = true;
-        else if (k == "r") moveCamera(sceneCamera_);
-        else if (k == "p") out_ << cameraLine(camera_) << std::endl;
-        else if (k == "1") settings_.view = gpu::View::Color;
-        else if (k == "2") settings_.view = gpu::View::Depth;
-        else if (k == "3") settings_.view = gpu::View::Normal;
-        else if (k == "4") settings_.view = gpu::View::ObjectId;
+        if (k == "q" || k == "esc")
+            quit_ = true;
+        else if (k == "r")
+            moveCamera(sceneCamera_);
+        else if (k == "p")
+            out_ << cameraLine(camera_) << std::endl;
+        else if (k == "1")
+            settings_.view = gpu::View::Color;
+        else if (k == "2")
+            settings_.view = gpu::View::Depth;
+        else if (k == "3")
+            settings_.view = gpu::View::Normal;
+        else if (k == "4")
+            settings_.view = gpu::View::ObjectId;
         else if (k == "c") {
             showCpu_ = !showCpu_;
             if (showCpu_ && !cpuValid_ && !cpu_.running()) startCpu();
@@ -332,7 +349,8 @@ private:
             showDifference_ = !showDifference_;
             if (showDifference_ && !cpuValid_ && !cpu_.running()) startCpu();
             if (showDifference_) compareWithCpu();
-        } else if (k == "s") save(nextFreeName());
+        } else if (k == "s")
+            save(nextFreeName());
         show();
     }
 
@@ -394,7 +412,8 @@ private:
 
     void startCpu() {
         if (!scene_) return;
-        const int threads = o_.threads > 0 ? o_.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+        const int threads =
+            o_.threads > 0 ? o_.threads : int(std::max(1u, std::thread::hardware_concurrency()));
         cpu_.start(*scene_, makeCameraBasis(camera_, o_.width, o_.height),
                    RenderSettings{o_.width, o_.height, 1, o_.spp, o_.seed}, threads);
     }
@@ -462,7 +481,9 @@ private:
             title += " | pass " + std::to_string(at + 1) + "/" + std::to_string(passes_.size()) +
                      " " + passes_[at].name;
             if (rendering())
-                title += " (" + std::to_string(int(100.0 * double(tileDone_) / double(tileTotal_))) + " %)";
+                title += " (" +
+                         std::to_string(int(100.0 * double(tileDone_) / double(tileTotal_))) +
+                         " %)";
         }
         title += " | " + fixed(mrays_, 2) + " Mrays/s | " + context_.device().name;
         const gpu::ViewSettings& s = shown_;
@@ -471,11 +492,13 @@ private:
         if (s.view == gpu::View::Normal) title += " | normals";
         if (s.view == gpu::View::ObjectId) title += " | object ids";
         if (showCpu_)
-            title += cpuValid_ ? " | CPU reference"
-                               : " | CPU reference " + std::to_string(int(100 * cpu_.fraction())) + " %";
+            title += cpuValid_
+                         ? " | CPU reference"
+                         : " | CPU reference " + std::to_string(int(100 * cpu_.fraction())) + " %";
         if (showDifference_) {
             if (!cpuValid_)
-                title += " | difference: CPU reference " + std::to_string(int(100 * cpu_.fraction())) + " %";
+                title += " | difference: CPU reference " +
+                         std::to_string(int(100 * cpu_.fraction())) + " %";
             else if (difference_)
                 title += " | difference: " + std::to_string(*difference_) + " pixels over " +
                          fixed(s.threshold, 3);
@@ -552,10 +575,10 @@ std::vector<ViewPass> viewProgression(int width, int height, int spp, std::uint3
         RenderSettings settings{width, height, 1, spp, seed};
         settings.firstSample = k;
         settings.sampleCount = 1;
-        passes.push_back({settings, k == 0,
-                          spp == 1 ? std::string("block 1")
-                                   : "block 1, sample " + std::to_string(k + 1) + " of " +
-                                         std::to_string(spp)});
+        passes.push_back(
+            {settings, k == 0,
+             spp == 1 ? std::string("block 1")
+                      : "block 1, sample " + std::to_string(k + 1) + " of " + std::to_string(spp)});
     }
     return passes;
 }
@@ -564,7 +587,8 @@ int runView(const Options& options, std::ostream& out, std::ostream& err) {
     // The script is read first: its mistakes are told before a window opens.
     const std::vector<ViewEvent> script =
         options.eventsPath.empty() ? std::vector<ViewEvent>{} : readViewEvents(options.eventsPath);
-    if (!options.screenshotPath.empty()) requireWritableFolder(options.screenshotPath, "--screenshot");
+    if (!options.screenshotPath.empty())
+        requireWritableFolder(options.screenshotPath, "--screenshot");
     const StopOnSignal closeOnCtrlC;
     ViewSession session(options, script, out, err);
     return session.run();

@@ -35,7 +35,8 @@ std::vector<Word> wordsOf(const std::string& line) {
 }  // namespace
 
 std::vector<ViewEvent> parseViewEvents(const std::string& text, const std::string& path) {
-    static const std::set<std::string> keys{"r", "p", "1", "2", "3", "4", "c", "d", "s", "q", "esc"};
+    static const std::set<std::string> keys{"r", "p", "1", "2", "3",  "4",
+                                            "c", "d", "s", "q", "esc"};
     std::vector<ViewEvent> events;
     std::istringstream in(text);
     int lineNumber = 0;
@@ -48,7 +49,8 @@ std::vector<ViewEvent> parseViewEvents(const std::string& text, const std::strin
                         ": error: " + message);
         };
         const auto number = [&](size_t i) {
-            if (i >= words.size()) fail(words.back(), "'" + words[0].text + "' expects more numbers");
+            if (i >= words.size())
+                fail(words.back(), "'" + words[0].text + "' expects more numbers");
             double value = 0;
             const std::string& w = words[i].text;
             const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), value);
@@ -57,8 +59,10 @@ std::vector<ViewEvent> parseViewEvents(const std::string& text, const std::strin
             return value;
         };
         const auto expectWords = [&](size_t count, const char* usage) {
-            if (words.size() > count) fail(words[count], std::string("too much on the line; expected `") + usage + "`");
-            if (words.size() < count) fail(words.back(), std::string("too little on the line; expected `") + usage + "`");
+            if (words.size() > count)
+                fail(words[count], std::string("too much on the line; expected `") + usage + "`");
+            if (words.size() < count)
+                fail(words.back(), std::string("too little on the line; expected `") + usage + "`");
         };
         ViewEvent e;
         const std::string& verb = words[0].text;
@@ -67,12 +71,14 @@ std::vector<ViewEvent> parseViewEvents(const std::string& text, const std::strin
             e.kind = ViewEvent::Kind::Key;
             e.key = words[1].text;
             if (!keys.count(e.key))
-                fail(words[1], "'" + e.key + "' is not a key the view knows (r p 1 2 3 4 c d s q esc)");
+                fail(words[1],
+                     "'" + e.key + "' is not a key the view knows (r p 1 2 3 4 c d s q esc)");
         } else if (verb == "drag") {
             expectWords(4, "drag left|right DX DY");
             e.kind = ViewEvent::Kind::Drag;
             if (words[1].text != "left" && words[1].text != "right")
-                fail(words[1], "the button is 'left' (orbit) or 'right' (pan), not '" + words[1].text + "'");
+                fail(words[1],
+                     "the button is 'left' (orbit) or 'right' (pan), not '" + words[1].text + "'");
             e.rightButton = words[1].text == "right";
             e.dx = number(2);
             e.dy = number(3);

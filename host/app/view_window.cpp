@@ -14,7 +14,9 @@ namespace {
 
 std::string lastGlfwError;
 
-void rememberError(int, const char* description) { lastGlfwError = description ? description : ""; }
+void rememberError(int, const char* description) {
+    lastGlfwError = description ? description : "";
+}
 
 // Input gathered by the callbacks, handed out by events().
 struct Input {
@@ -23,7 +25,9 @@ struct Input {
     int button = -1;      // the button held (GLFW_MOUSE_BUTTON_LEFT or _RIGHT), or -1
 };
 
-Input& inputOf(GLFWwindow* window) { return *static_cast<Input*>(glfwGetWindowUserPointer(window)); }
+Input& inputOf(GLFWwindow* window) {
+    return *static_cast<Input*>(glfwGetWindowUserPointer(window));
+}
 
 ViewEvent keyEvent(const std::string& key) {
     ViewEvent e;
@@ -44,9 +48,10 @@ bool hasDisplay() {
 
 ViewWindow::ViewWindow(int width, int height, const std::string& title) {
     if (!hasDisplay())
-        throw Error("vkray view needs a display, and neither DISPLAY nor WAYLAND_DISPLAY is set; "
-                    "run it in a desktop session (or under xvfb-run), or use `vkray render "
-                    "--watch` to re-render a PNG whenever the scene changes");
+        throw Error(
+            "vkray view needs a display, and neither DISPLAY nor WAYLAND_DISPLAY is set; "
+            "run it in a desktop session (or under xvfb-run), or use `vkray render "
+            "--watch` to re-render a PNG whenever the scene changes");
     glfwSetErrorCallback(rememberError);
     if (!glfwInit())
         throw Error("vkray view cannot open the display (DISPLAY or WAYLAND_DISPLAY): " +
@@ -71,11 +76,13 @@ ViewWindow::ViewWindow(int width, int height, const std::string& title) {
             inputOf(w).events.push_back(keyEvent(std::string(1, char(c))));
     });
     glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
-        if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS) inputOf(w).events.push_back(keyEvent("esc"));
+        if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS)
+            inputOf(w).events.push_back(keyEvent("esc"));
     });
     glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
         Input& input = inputOf(w);
-        if (action == GLFW_PRESS && (button == GLFW_MOUSE_BUTTON_LEFT || button == GLFW_MOUSE_BUTTON_RIGHT)) {
+        if (action == GLFW_PRESS &&
+            (button == GLFW_MOUSE_BUTTON_LEFT || button == GLFW_MOUSE_BUTTON_RIGHT)) {
             input.button = button;
             glfwGetCursorPos(w, &input.x, &input.y);
         } else if (action == GLFW_RELEASE && button == input.button) {
@@ -118,7 +125,9 @@ ViewWindow::~ViewWindow() {
 std::vector<std::string> ViewWindow::surfaceExtensions() const {
     std::uint32_t count = 0;
     const char** names = glfwGetRequiredInstanceExtensions(&count);
-    if (!names) throw Error("vkray view: the window system names no Vulkan surface extensions (" + lastGlfwError + ")");
+    if (!names)
+        throw Error("vkray view: the window system names no Vulkan surface extensions (" +
+                    lastGlfwError + ")");
     return std::vector<std::string>(names, names + count);
 }
 
@@ -138,11 +147,15 @@ gpu::SurfaceMaker ViewWindow::surfaceMaker() const {
     };
 }
 
-void ViewWindow::setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
+void ViewWindow::setTitle(const std::string& title) {
+    glfwSetWindowTitle(window_, title.c_str());
+}
 
 std::vector<ViewEvent> ViewWindow::events(double seconds) {
-    if (seconds > 0) glfwWaitEventsTimeout(seconds);
-    else glfwPollEvents();
+    if (seconds > 0)
+        glfwWaitEventsTimeout(seconds);
+    else
+        glfwPollEvents();
     Input& input = inputOf(window_);
     if (glfwWindowShouldClose(window_)) {
         glfwSetWindowShouldClose(window_, GLFW_FALSE);
@@ -153,6 +166,8 @@ std::vector<ViewEvent> ViewWindow::events(double seconds) {
     return events;
 }
 
-void ViewWindow::wake() { glfwPostEmptyEvent(); }
+void ViewWindow::wake() {
+    glfwPostEmptyEvent();
+}
 
 }  // namespace vkray

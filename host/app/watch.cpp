@@ -2,12 +2,12 @@
 
 #include "util/error.h"
 
-#include <csignal>
-#include <cstring>
-#include <filesystem>
 #include <poll.h>
 #include <sys/inotify.h>
 #include <unistd.h>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
 
 namespace vkray {
 
@@ -16,7 +16,9 @@ namespace fs = std::filesystem;
 namespace {
 
 volatile std::sig_atomic_t stopFlag = 0;
-void onStopSignal(int) { stopFlag = 1; }
+void onStopSignal(int) {
+    stopFlag = 1;
+}
 
 using SignalHandler = void (*)(int);
 SignalHandler previousInt = SIG_DFL, previousTerm = SIG_DFL;
@@ -34,7 +36,9 @@ StopOnSignal::~StopOnSignal() {
     std::signal(SIGTERM, previousTerm);
 }
 
-bool stopRequested() { return stopFlag != 0; }
+bool stopRequested() {
+    return stopFlag != 0;
+}
 
 FileWatcher::FileWatcher() : fd_(::inotify_init1(IN_NONBLOCK | IN_CLOEXEC)) {
     if (fd_ < 0)
@@ -42,13 +46,14 @@ FileWatcher::FileWatcher() : fd_(::inotify_init1(IN_NONBLOCK | IN_CLOEXEC)) {
                     ")");
 }
 
-FileWatcher::~FileWatcher() { ::close(fd_); }
+FileWatcher::~FileWatcher() {
+    ::close(fd_);
+}
 
 void FileWatcher::addWatch(const std::string& folder, const std::string& name) {
     const int wd = ::inotify_add_watch(
         fd_, folder.c_str(), IN_CLOSE_WRITE | IN_MOVED_TO | IN_CREATE | IN_DELETE | IN_MODIFY);
-    if (wd < 0)
-        throw Error("--watch: cannot watch '" + folder + "': " + std::strerror(errno));
+    if (wd < 0) throw Error("--watch: cannot watch '" + folder + "': " + std::strerror(errno));
     names_[wd].insert(name);
 }
 

@@ -16,8 +16,7 @@ namespace vkray::dist {
 class ByteWriter {
 public:
     template <typename T>
-        requires std::is_arithmetic_v<T>
-    ByteWriter& operator<<(T value) {
+    requires std::is_arithmetic_v<T> ByteWriter& operator<<(T value) {
         bytes_.append(reinterpret_cast<const char*>(&value), sizeof value);
         return *this;
     }
@@ -36,8 +35,7 @@ class ByteReader {
 public:
     explicit ByteReader(const std::string& bytes) : bytes_(bytes) {}
     template <typename T>
-        requires std::is_arithmetic_v<T>
-    ByteReader& operator>>(T& value) {
+    requires std::is_arithmetic_v<T> ByteReader& operator>>(T& value) {
         std::memcpy(&value, take(sizeof value), sizeof value);
         return *this;
     }

@@ -33,7 +33,8 @@ void unpack(const std::string& bytes, const TileRect& tile, Frame& frame) {
     const std::size_t pixels = std::size_t(tile.width) * std::size_t(tile.height);
     if (bytes.size() != pixels * kFloatsPerPixel * sizeof(float))
         throw Error("MPI: a tile came back with " + std::to_string(bytes.size()) +
-                    " bytes instead of " + std::to_string(pixels * kFloatsPerPixel * sizeof(float)));
+                    " bytes instead of " +
+                    std::to_string(pixels * kFloatsPerPixel * sizeof(float)));
     std::vector<float> values(pixels * kFloatsPerPixel);
     std::memcpy(values.data(), bytes.data(), bytes.size());
     const float* in = values.data();
@@ -56,7 +57,8 @@ std::string describe(const TileRect& tile) {
 TileRect tileOf(const std::string& description) {
     std::int32_t numbers[4] = {};
     if (description.size() != sizeof numbers)
-        throw Error("MPI: rank 0 described a tile in " + std::to_string(description.size()) + " bytes");
+        throw Error("MPI: rank 0 described a tile in " + std::to_string(description.size()) +
+                    " bytes");
     std::memcpy(numbers, description.data(), sizeof numbers);
     return {numbers[0], numbers[1], numbers[2], numbers[3]};
 }
@@ -113,7 +115,8 @@ private:
     std::vector<TileRect> tiles_;
     std::atomic<std::size_t> raysDone_{0};
     std::vector<std::size_t> tilesPerRank_;  // [0]: rank 0's thread; the rest: the answering thread
-    std::vector<std::pair<std::size_t, std::string>> received_;  // the answering thread's until wait()
+    std::vector<std::pair<std::size_t, std::string>>
+        received_;                       // the answering thread's until wait()
     std::optional<JobHandOut> handOut_;  // last: destroyed first, while the above still live
 };
 

@@ -135,11 +135,17 @@ JobHandOut::~JobHandOut() {
     thread_.detach();
 }
 
-std::optional<std::size_t> JobHandOut::take() { return state_->take(); }
+std::optional<std::size_t> JobHandOut::take() {
+    return state_->take();
+}
 
-void JobHandOut::wait() { thread_.join(); }
+void JobHandOut::wait() {
+    thread_.join();
+}
 
-double JobHandOut::answeringSeconds() const { return state_->answeringSeconds; }
+double JobHandOut::answeringSeconds() const {
+    return state_->answeringSeconds;
+}
 
 void shareFromRankZero(const World& world, std::string& bytes) {
     if (!world.distributed()) return;
@@ -152,8 +158,10 @@ void shareFromRankZero(const World& world, std::string& bytes) {
         MPI_Bcast(bytes.data() + at, int(std::min(kPiece, size - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 
-std::optional<GivenJob> askRankZero(const std::optional<std::pair<std::size_t, std::string>>& done) {
-    sendMessage(0, kAsk, done ? std::int64_t(done->first) : kNone, done ? done->second : std::string());
+std::optional<GivenJob> askRankZero(
+    const std::optional<std::pair<std::size_t, std::string>>& done) {
+    sendMessage(0, kAsk, done ? std::int64_t(done->first) : kNone,
+                done ? done->second : std::string());
     auto [job, description] = receiveMessage(waitForMessage(0, kGive));
     if (job < 0) return std::nullopt;
     return GivenJob{std::size_t(job), std::move(description)};
@@ -167,9 +175,13 @@ JobHandOut::JobHandOut(const World&, std::size_t, Describe, Receive) {
     throw Error("this vkray was built without MPI support");
 }
 JobHandOut::~JobHandOut() = default;
-std::optional<std::size_t> JobHandOut::take() { return std::nullopt; }
+std::optional<std::size_t> JobHandOut::take() {
+    return std::nullopt;
+}
 void JobHandOut::wait() {}
-double JobHandOut::answeringSeconds() const { return 0; }
+double JobHandOut::answeringSeconds() const {
+    return 0;
+}
 std::optional<GivenJob> askRankZero(const std::optional<std::pair<std::size_t, std::string>>&) {
     throw Error("this vkray was built without MPI support");
 }

@@ -7,10 +7,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <thread>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <thread>
 
 #if VKRAY_WITH_MPI
 #include <mpi.h>
@@ -52,7 +52,9 @@ World& World::current() {
     return joined ? *joined : one;
 }
 
-std::string World::describeRank() const { return "rank " + std::to_string(rank_) + " on " + host_; }
+std::string World::describeRank() const {
+    return "rank " + std::to_string(rank_) + " on " + host_;
+}
 
 #if VKRAY_WITH_MPI
 
@@ -123,9 +125,10 @@ World& World::join(int&, char**&) {
     static World world;
     joined = &world;
     if (startedByMpirun())
-        throw Error("this vkray was built without MPI, but mpirun started it: every rank would "
-                    "render and write the whole image. Install libopenmpi-dev and rebuild "
-                    "(cmake -DVKRAY_MPI=ON), or run vkray without mpirun");
+        throw Error(
+            "this vkray was built without MPI, but mpirun started it: every rank would "
+            "render and write the whole image. Install libopenmpi-dev and rebuild "
+            "(cmake -DVKRAY_MPI=ON), or run vkray without mpirun");
     return world;
 }
 
@@ -136,7 +139,9 @@ void World::abort(int exitCode) const {
 
 void World::finish() {}
 
-std::string World::support() { return "not built in (rebuild with libopenmpi-dev installed)"; }
+std::string World::support() {
+    return "not built in (rebuild with libopenmpi-dev installed)";
+}
 
 #endif
 

@@ -48,10 +48,10 @@ std::optional<std::uint32_t> computeQueueFamily(const vk::raii::PhysicalDevice& 
 DeviceInfo describe(const vk::raii::PhysicalDevice& device, int index) {
     DeviceInfo info;
     info.index = index;
-    auto chain = device.getProperties2<vk::PhysicalDeviceProperties2,
-                                       vk::PhysicalDeviceDriverProperties,
-                                       vk::PhysicalDeviceSubgroupProperties,
-                                       vk::PhysicalDeviceMaintenance3Properties>();
+    auto chain =
+        device.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties,
+                              vk::PhysicalDeviceSubgroupProperties,
+                              vk::PhysicalDeviceMaintenance3Properties>();
     const auto& props = chain.get<vk::PhysicalDeviceProperties2>().properties;
     const auto& driver = chain.get<vk::PhysicalDeviceDriverProperties>();
     info.subgroupSize = chain.get<vk::PhysicalDeviceSubgroupProperties>().subgroupSize;
@@ -61,8 +61,7 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& device, int index) {
     info.driverName = driver.driverName.data();
     info.driverInfo = driver.driverInfo.data();
     info.apiVersion = props.apiVersion;
-    info.hasCompute =
-        computeQueueFamily(device).has_value() && injectedFault() != Fault::NoCompute;
+    info.hasCompute = computeQueueFamily(device).has_value() && injectedFault() != Fault::NoCompute;
     info.shaderFloat64 = device.getFeatures().shaderFloat64 && injectedFault() != Fault::NoFloat64;
     info.maxStorageBufferRange = props.limits.maxStorageBufferRange;
     info.maxUniformBufferRange = props.limits.maxUniformBufferRange;
@@ -93,8 +92,10 @@ vk::raii::Instance createInstance(vk::raii::Context& context, bool validation,
         for (const auto& extension : context.enumerateInstanceExtensionProperties())
             found = found || name == extension.extensionName.data();
         if (!found)
-            throw Error("the Vulkan loader lacks " + name + ", which a window needs; install a "
-                        "Vulkan driver with window-system support (on Debian: mesa-vulkan-drivers)");
+            throw Error(
+                "the Vulkan loader lacks " + name +
+                ", which a window needs; install a "
+                "Vulkan driver with window-system support (on Debian: mesa-vulkan-drivers)");
         extensions.push_back(name.c_str());
     }
     if (validation) {
@@ -137,7 +138,8 @@ int preferredDevice(const std::vector<DeviceInfo>& devices,
 }
 
 std::string loaderFailure(const std::exception& e) {
-    return std::string("cannot start Vulkan: ") + e.what() + "; install the Vulkan loader "
+    return std::string("cannot start Vulkan: ") + e.what() +
+           "; install the Vulkan loader "
            "(on Debian: apt-get install libvulkan1) and a driver, or render with --cpu";
 }
 
@@ -203,7 +205,8 @@ std::vector<DeviceInfo> Context::listDevices(int* preferred) {
         vk::raii::Instance instance = createInstance(context, false);
         auto physical = enumerate(instance);
         std::vector<DeviceInfo> devices;
-        for (size_t i = 0; i < physical.size(); ++i) devices.push_back(describe(physical[i], int(i)));
+        for (size_t i = 0; i < physical.size(); ++i)
+            devices.push_back(describe(physical[i], int(i)));
         if (preferred) *preferred = preferredDevice(devices, physical);
         return devices;
     } catch (const vk::IncompatibleDriverError&) {
@@ -259,9 +262,8 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
                         kDeviceAdvice);
     } else if (chosen >= int(physical.size())) {
         throw Error("--device " + std::to_string(chosen) + ": there are only " +
-                    std::to_string(physical.size()) +
-                    " Vulkan devices (0 .. " + std::to_string(physical.size() - 1) +
-                    "); `vkray devices` lists them");
+                    std::to_string(physical.size()) + " Vulkan devices (0 .. " +
+                    std::to_string(physical.size() - 1) + "); `vkray devices` lists them");
     } else if (!devices[size_t(chosen)].hasCompute ||
                devices[size_t(chosen)].apiVersion < VK_API_VERSION_1_2) {
         throw Error("--device " + std::to_string(chosen) + " (" + devices[size_t(chosen)].name +
@@ -298,9 +300,13 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
 
 Context::~Context() = default;
 
-const DeviceInfo& Context::device() const { return impl_->info; }
+const DeviceInfo& Context::device() const {
+    return impl_->info;
+}
 
-int Context::validationMessages() const { return impl_->validationMessages.load(); }
+int Context::validationMessages() const {
+    return impl_->validationMessages.load();
+}
 
 HostBuffer::HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUsageFlags usage)
     : size_(size), device_(&context.device) {
@@ -320,7 +326,8 @@ HostBuffer::HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUs
 
 void HostBuffer::upload(const void* source, vk::DeviceSize bytes) {
     std::memcpy(mapped_, source, size_t(bytes));
-    if (!coherent_) device_->flushMappedMemoryRanges(vk::MappedMemoryRange(*memory_, 0, VK_WHOLE_SIZE));
+    if (!coherent_)
+        device_->flushMappedMemoryRanges(vk::MappedMemoryRange(*memory_, 0, VK_WHOLE_SIZE));
 }
 
 void HostBuffer::invalidate() {

@@ -11,13 +11,14 @@
 namespace vkray::gpu {
 
 struct DeviceInfo {
-    int index = -1;                 // position in the Vulkan enumeration (--device N)
+    int index = -1;  // position in the Vulkan enumeration (--device N)
     std::string name;
-    std::string type;               // "discrete GPU", "integrated GPU", "CPU", ...
+    std::string type;  // "discrete GPU", "integrated GPU", "CPU", ...
     std::string driverName;
     std::string driverInfo;
     std::uint32_t apiVersion = 0;
-    std::uint32_t driverVersion = 0;  // vendor-encoded; printed raw and as Vulkan's major.minor.patch
+    std::uint32_t driverVersion =
+        0;  // vendor-encoded; printed raw and as Vulkan's major.minor.patch
     std::uint32_t subgroupSize = 0;
     bool hasCompute = false;
     bool shaderFloat64 = false;
@@ -32,9 +33,9 @@ struct DeviceInfo {
 };
 
 struct ContextOptions {
-    int deviceIndex = -1;    // -1: prefer a discrete GPU, then integrated, ..., then lavapipe
-    bool validation = false; // enable VK_LAYER_KHRONOS_validation
-    int shareIndex = 0;      // automatic choice: this process's index among those on its node
+    int deviceIndex = -1;     // -1: prefer a discrete GPU, then integrated, ..., then lavapipe
+    bool validation = false;  // enable VK_LAYER_KHRONOS_validation
+    int shareIndex = 0;       // automatic choice: this process's index among those on its node
     // A window to present to (`vkray view`): the instance extensions its
     // window system's surfaces need, and VK_KHR_swapchain on the device.
     std::vector<std::string> surfaceExtensions;
@@ -73,7 +74,15 @@ private:
 // rays start on the surface they leave (VKRAY_FAULT_NO_OFFSET = 1), so that
 // tests can show `vkray stress` counting the acne that follows. Unset: None.
 // An unknown NAME is an Error.
-enum class Fault { None, NoCompute, DeviceLost, OutOfDeviceMemory, NoFloat64, SlowProgress, NoOffset };
+enum class Fault {
+    None,
+    NoCompute,
+    DeviceLost,
+    OutOfDeviceMemory,
+    NoFloat64,
+    SlowProgress,
+    NoOffset
+};
 Fault injectedFault();
 
 }  // namespace vkray::gpu

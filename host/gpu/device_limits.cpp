@@ -59,7 +59,8 @@ DeviceLimits deviceLimits(const DeviceInfo& device) {
     limits.maxTexelBufferElements =
         lowerByEnvironment("VKRAY_MAX_TEXELS", device.maxTexelBufferElements);
     limits.maxMemoryAllocationSize = device.maxMemoryAllocationSize;
-    limits.memoryHeapBytes = lowerByEnvironment("VKRAY_DEVICE_MEMORY_BYTES", device.memoryHeapBytes);
+    limits.memoryHeapBytes =
+        lowerByEnvironment("VKRAY_DEVICE_MEMORY_BYTES", device.memoryHeapBytes);
     limits.maxWorkgroupCount[0] = device.maxWorkgroupCount[0];
     limits.maxWorkgroupCount[1] = device.maxWorkgroupCount[1];
     return limits;
@@ -77,7 +78,8 @@ void checkBufferNeeds(const std::vector<BufferNeed>& needs, const DeviceLimits& 
         const char* rangeName = need.uniform ? "maxUniformBufferRange" : "maxStorageBufferRange";
         // A texel buffer's bound is its texel count (below), not a buffer range.
         const bool overRange = need.texelBytes == 0 && bytes > range;
-        if (overRange || (limits.maxMemoryAllocationSize && bytes > limits.maxMemoryAllocationSize)) {
+        if (overRange ||
+            (limits.maxMemoryAllocationSize && bytes > limits.maxMemoryAllocationSize)) {
             const std::uint64_t limit = overRange ? range : limits.maxMemoryAllocationSize;
             throw Error("the scene's " + std::to_string(need.count) + " " + need.what + " need " +
                         bytesText(bytes) + " in one " + (need.uniform ? "uniform" : "storage") +
@@ -107,9 +109,8 @@ void checkBufferNeeds(const std::vector<BufferNeed>& needs, const DeviceLimits& 
         for (std::size_t i = 0; i < std::min<std::size_t>(sizes.size(), 3); ++i)
             parts += (i ? ", " : "") + sizes[i].second + " " + bytesText(sizes[i].first);
         throw Error("the scene needs about " + bytesText(total) + " of device memory (" + parts +
-                    (sizes.size() > 3 ? ", ..." : "") + "); " +
-                    limits.deviceName + "'s memory heap holds " +
-                    bytesText(limits.memoryHeapBytes) +
+                    (sizes.size() > 3 ? ", ..." : "") + "); " + limits.deviceName +
+                    "'s memory heap holds " + bytesText(limits.memoryHeapBytes) +
                     ". Use fewer objects or smaller meshes, or render with --cpu");
     }
 }
@@ -130,10 +131,10 @@ int fitTileSide(int wanted, int block, std::size_t pixelBytes, std::uint32_t wor
     std::uint64_t side = std::min({std::uint64_t(std::max(wanted, block)), byBuffer, byCount});
     side = side / std::uint64_t(block) * std::uint64_t(block);
     if (side == 0)
-        throw Error("one " + std::to_string(block) + "x" + std::to_string(block) +
-                    " block needs " + bytesText(std::uint64_t(block) * block * pixelBytes) +
-                    " of pixel buffer; " + limits.deviceName + " allows at most " +
-                    bytesText(bufferLimit) + " in one storage buffer. Use a smaller --block, "
+        throw Error("one " + std::to_string(block) + "x" + std::to_string(block) + " block needs " +
+                    bytesText(std::uint64_t(block) * block * pixelBytes) + " of pixel buffer; " +
+                    limits.deviceName + " allows at most " + bytesText(bufferLimit) +
+                    " in one storage buffer. Use a smaller --block, "
                     "or render with --cpu");
     return int(side);
 }

@@ -1,10 +1,10 @@
 #include "gpu/gpu_scene.h"
 
 #include "image/image_io.h"
-#include "util/error.h"
 #include "scene/pixmaps.h"
 #include "scene/scene_geometry.h"
 #include "scene/triangle_mesh.h"
+#include "util/error.h"
 
 #include <algorithm>
 #include <cstring>
@@ -72,8 +72,10 @@ PackedObject packObject(const Scene& scene, const SceneObject& object) {
     if (kind == KIND_TAPERED_CYLINDER) parameter = floatBits(float(object.taper));
     if (kind == KIND_MESH) parameter = uint(object.mesh);
     uint follow = 0;
-    if (scene.maxRecursionDepth > 0 && m.reflectivity > scene.minReflectivity) follow |= FOLLOW_REFLECTION;
-    if (scene.maxRecursionDepth > 0 && m.transparency > scene.minTransparency) follow |= FOLLOW_REFRACTION;
+    if (scene.maxRecursionDepth > 0 && m.reflectivity > scene.minReflectivity)
+        follow |= FOLLOW_REFLECTION;
+    if (scene.maxRecursionDepth > 0 && m.transparency > scene.minTransparency)
+        follow |= FOLLOW_REFRACTION;
     g.shape = {kind, parameter, follow, floatBits(float(m.transparency))};
     GpuMaterial& material = packed.material;
     material.ambient = toVec4(m.ambient);
@@ -105,7 +107,8 @@ std::vector<GpuBvhNode> packBvh(const Bvh& bvh) {
     const auto entry = [](const BvhNode& node) {
         if (node.leaf() && (node.count > BVH_LEAF_MAX || node.first > BVH_FIRST_MAX))
             throw Error("internal: a BVH leaf beyond the shader's bounds (" +
-                        std::to_string(node.count) + " entries from " + std::to_string(node.first) + ")");
+                        std::to_string(node.count) + " entries from " + std::to_string(node.first) +
+                        ")");
         return GpuBvhNode{toVec4(node.bounds.lo, bitsAsFloat(node.leaf() ? node.first : 0)),
                           toVec4(node.bounds.hi, bitsAsFloat(node.count))};
     };
@@ -118,7 +121,8 @@ std::vector<GpuBvhNode> packBvh(const Bvh& bvh) {
         if (node.leaf()) continue;
         const std::uint32_t children[2] = {index + 1, node.first};
         const std::size_t first = packed.size();
-        if (first > BVH_FIRST_MAX) throw Error("internal: a BVH beyond the shader's node index bound");
+        if (first > BVH_FIRST_MAX)
+            throw Error("internal: a BVH beyond the shader's node index bound");
         packed[at].lo.w = bitsAsFloat(uint(first));
         for (int k = 0; k < 2; ++k) {
             pending.emplace_back(packed.size(), children[k]);
@@ -137,8 +141,8 @@ bool isConvex(const TriangleMesh& mesh) {
     const double scale = glm::length(mesh.bounds.hi - mesh.bounds.lo);
     for (const TriangleMesh::Triangle& t : mesh.triangles) {
         const glm::dvec3 a = mesh.positions[t.position[0]];
-        const glm::dvec3 n = glm::cross(mesh.positions[t.position[1]] - a,
-                                        mesh.positions[t.position[2]] - a);
+        const glm::dvec3 n =
+            glm::cross(mesh.positions[t.position[1]] - a, mesh.positions[t.position[2]] - a);
         const double length = glm::length(n);
         if (length == 0) continue;
         for (const glm::dvec3& p : mesh.positions)
@@ -164,13 +168,12 @@ public:
         const uint first = uint(packed_.csgNodes.size());
         const CsgNeeds needs = emit(object, object);
         if (needs.spans > CSG_MAX_SPANS || needs.stack > CSG_MAX_STACK)
-            throw Error(located(object, std::string("this '") + shapeKeyword(object.type) +
-                                            "' needs up to " + std::to_string(needs.spans) +
-                                            " spans and " + std::to_string(needs.stack) +
-                                            " lists per ray; the GPU holds " +
-                                            std::to_string(CSG_MAX_SPANS) + " and " +
-                                            std::to_string(CSG_MAX_STACK) +
-                                            " (simplify the tree or render with --cpu)"));
+            throw Error(located(
+                object,
+                std::string("this '") + shapeKeyword(object.type) + "' needs up to " +
+                    std::to_string(needs.spans) + " spans and " + std::to_string(needs.stack) +
+                    " lists per ray; the GPU holds " + std::to_string(CSG_MAX_SPANS) + " and " +
+                    std::to_string(CSG_MAX_STACK) + " (simplify the tree or render with --cpu)"));
         packed_.csgNodes[first].node.z = uint(packed_.csgNodes.size()) - first;
         return first;
     }
@@ -199,15 +202,17 @@ private:
         const std::string op = shapeKeyword(root.type);
         switch (gpuKindOf(leaf.type)) {
         case KIND_SQUARE:
-            throw Error(located(leaf, "'square' has no inside and cannot be an operand of '" + op + "'"));
+            throw Error(
+                located(leaf, "'square' has no inside and cannot be an operand of '" + op + "'"));
         case KIND_TORUS: return 2;
         case KIND_TAPERED_CYLINDER: return leaf.taper < 0 ? 2 : 1;  // an hourglass: two
         case KIND_MESH: {
             const TriangleMesh& mesh = *scene_.meshes.at(size_t(leaf.mesh));
             if (!mesh.closed)
-                throw Error(located(leaf, "'" + std::string(shapeKeyword(leaf.type)) +
-                                              "' is not a closed surface and cannot be an operand of '" +
-                                              op + "'"));
+                throw Error(
+                    located(leaf, "'" + std::string(shapeKeyword(leaf.type)) +
+                                      "' is not a closed surface and cannot be an operand of '" +
+                                      op + "'"));
             if (!isConvex(mesh))
                 throw Error(located(leaf, "'" + std::string(shapeKeyword(leaf.type)) +
                                               "' is not convex; the GPU takes only convex meshes "
@@ -254,8 +259,8 @@ GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
     for (const SceneObject& object : scene.objects) {
         if (!isBoolean(object.type) && gpuKindOf(object.type) == KIND_MESH &&
             (object.mesh < 0 || size_t(object.mesh) >= scene.meshes.size()))
-            throw Error(located(object, std::string("'") + shapeKeyword(object.type) +
-                                            "' has no geometry loaded"));
+            throw Error(located(
+                object, std::string("'") + shapeKeyword(object.type) + "' has no geometry loaded"));
         const PackedObject p = packObject(scene, object);
         packed.objects.push_back(p.geometry);
         packed.materials.push_back(p.material);
@@ -266,7 +271,8 @@ GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
 
     CsgPacker csg(scene, packed);
     for (size_t i = 0; i < scene.objects.size(); ++i)
-        if (isBoolean(scene.objects[i].type)) packed.objects[i].shape.y = csg.pack(scene.objects[i]);
+        if (isBoolean(scene.objects[i].type))
+            packed.objects[i].shape.y = csg.pack(scene.objects[i]);
 
     if (features.kinds[KIND_MESH]) packMeshes(scene, packed);
 

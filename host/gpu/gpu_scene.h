@@ -14,8 +14,8 @@
 namespace vkray::gpu {
 
 struct GpuScene {
-    std::vector<GpuObjectGeometry> objects;  // the scene's objects (ids), then CSG primitives
-    std::vector<GpuMaterial> materials;       // theirs, in the same order
+    std::vector<GpuObjectGeometry> objects;      // the scene's objects (ids), then CSG primitives
+    std::vector<GpuMaterial> materials;          // theirs, in the same order
     std::vector<GpuDoubleObject> doubleObjects;  // the same in double (fp64 variant)
     std::vector<GpuLight> lights;
     // features.objectBvh: nodes over the bounded objects; objectIndex holds
@@ -42,7 +42,9 @@ GpuDoubleCamera packDoubleCamera(const CameraBasis& camera);
 // Entries of one ray's pending-ray stack (reflection and refraction
 // variants): taking a ray adds at most two one level deeper, so
 // maxRecursionDepth + 1 hold the deepest tree.
-inline int pendingRayEntries(const Scene& scene) { return scene.maxRecursionDepth + 1; }
+inline int pendingRayEntries(const Scene& scene) {
+    return scene.maxRecursionDepth + 1;
+}
 
 FrameParams packFrame(const Scene& scene, const GpuScene& packed, const CameraBasis& camera,
                       const RenderSettings& settings);

@@ -4,17 +4,17 @@
 #include "gpu/device_limits.h"
 #include "gpu/gpu_scene.h"
 #include "gpu/shader_variant.h"
+#include "shaders/layout.h"
 #include "util/error.h"
 #include "util/stopwatch.h"
-#include "shaders/layout.h"
 
+#include <time.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <map>
-#include <time.h>
 
 namespace vkray::gpu {
 
@@ -82,8 +82,8 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     for (const ShaderBinding& b : bindingsFor(features)) kinds[b.binding] = b.kind;
     // A scene array: a texel buffer, its texels those of its binding's kind.
     const auto need = [&](uint binding, const char* what, const auto& items, const char* advice) {
-        return BufferNeed{what, items.size(), sizeof(items[0]), false, advice,
-                          useOf(kinds.at(binding)).texelBytes};
+        return BufferNeed{what,  items.size(), sizeof(items[0]),
+                          false, advice,       useOf(kinds.at(binding)).texelBytes};
     };
     const char* fewerObjects = "Use fewer objects";
     const char* smallerMeshes = "Use fewer or smaller meshes";
@@ -101,21 +101,29 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
                          doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask), false,
                          "Use a smaller maxRecursionDepth"});
     if (features.debugPixel)
-        needs.push_back({"debug entries", debugEntries, sizeof(GpuDebugEntry), false, fewerObjects});
+        needs.push_back(
+            {"debug entries", debugEntries, sizeof(GpuDebugEntry), false, fewerObjects});
     if (features.objectBvh) {
-        needs.push_back(need(BINDING_OBJECT_NODES, "object BVH nodes", packed.objectNodes, fewerObjects));
-        needs.push_back(need(BINDING_OBJECT_INDEX, "object BVH entries", packed.objectIndex, fewerObjects));
+        needs.push_back(
+            need(BINDING_OBJECT_NODES, "object BVH nodes", packed.objectNodes, fewerObjects));
+        needs.push_back(
+            need(BINDING_OBJECT_INDEX, "object BVH entries", packed.objectIndex, fewerObjects));
     }
     if (features.kinds[KIND_MESH]) {
         needs.push_back(need(BINDING_MESHES, "meshes", packed.meshes, smallerMeshes));
-        needs.push_back(need(BINDING_MESH_NODES, "mesh BVH nodes", packed.meshNodes, smallerMeshes));
+        needs.push_back(
+            need(BINDING_MESH_NODES, "mesh BVH nodes", packed.meshNodes, smallerMeshes));
         needs.push_back(need(BINDING_TRIANGLES, "triangles", packed.triangles, smallerMeshes));
     }
     if (features.kinds[KIND_BOOLEAN])
-        needs.push_back(need(BINDING_CSG_NODES, "CSG nodes", packed.csgNodes, "Use fewer or simpler booleans"));
-    if (doubles) needs.push_back(need(BINDING_DOUBLE_OBJECTS, "double transforms", packed.doubleObjects, fewerObjects));
+        needs.push_back(
+            need(BINDING_CSG_NODES, "CSG nodes", packed.csgNodes, "Use fewer or simpler booleans"));
+    if (doubles)
+        needs.push_back(
+            need(BINDING_DOUBLE_OBJECTS, "double transforms", packed.doubleObjects, fewerObjects));
     if (features.stressOutput)
-        needs.push_back({"stress output", tilePixels, sizeof(GpuStressSample), false, "Use a smaller image"});
+        needs.push_back(
+            {"stress output", tilePixels, sizeof(GpuStressSample), false, "Use a smaller image"});
     return needs;
 }
 
@@ -135,13 +143,16 @@ public:
     TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
               bool doubles, const Scene& scene, const CameraBasis& camera,
               const RenderSettings& settings, int tile)
-        : c_(c), pipeline_(pipeline), firstSample_(uint(settings.firstSample)),
+        : c_(c),
+          pipeline_(pipeline),
+          firstSample_(uint(settings.firstSample)),
           endSample_(uint(sampleEnd(settings))) {
         const GpuScene packed = packScene(scene, features);
         const size_t debugEntries = 4 + scene.objects.size() + scene.lights.size();
         const size_t raysPerSide = size_t((tile + settings.block - 1) / settings.block);
         const size_t tileRays = raysPerSide * raysPerSide;
-        const bool rayStack = features.has(Shading::Reflection) || features.has(Shading::Refraction);
+        const bool rayStack =
+            features.has(Shading::Reflection) || features.has(Shading::Refraction);
         const size_t pendingRays = rayStack ? tileRays * size_t(pendingRayEntries(scene)) : 0;
         checkBufferNeeds(bufferNeeds(packed, features, doubles, size_t(tile) * size_t(tile),
                                      tileRays, pendingRays, debugEntries),
@@ -202,10 +213,12 @@ public:
         std::vector<vk::WriteDescriptorSet> writes;
         for (const auto& [binding, buffer] : buffers_) {
             const BindingUse use = useOf(kindOf(binding));
-            vk::WriteDescriptorSet& write = writes.emplace_back(*set_, binding, 0, 1, use.descriptor);
+            vk::WriteDescriptorSet& write =
+                writes.emplace_back(*set_, binding, 0, 1, use.descriptor);
             if (use.texelBytes > 0) {
-                views_.emplace_back(c.device, vk::BufferViewCreateInfo({}, buffer->buffer(),
-                                                                       use.format, 0, VK_WHOLE_SIZE));
+                views_.emplace_back(
+                    c.device,
+                    vk::BufferViewCreateInfo({}, buffer->buffer(), use.format, 0, VK_WHOLE_SIZE));
                 write.setPTexelBufferView(&*views_.back());  // reserved: the views stay put
             } else {
                 write.setPBufferInfo(&infos.emplace_back(buffer->buffer(), 0, VK_WHOLE_SIZE));
@@ -239,18 +252,20 @@ public:
             if (status.counts.y == 0) return;
             ++stats.tilesRedone;
             if (turnBudget == 1)
-                throw BeyondTheLoopLimit("the GPU cannot trace one ray of the tile at (" + std::to_string(tx) +
-                            ", " + std::to_string(ty) + ") within the driver's loop limit (" +
-                            c_.info.name + " ends every loop of an invocation after a fixed "
-                            "number of turns; llvmpipe's is 65 535), so the result would be "
-                            "wrong. Render with --cpu, or make the scene simpler for one ray "
-                            "(fewer lights, objects or triangles along it)");
+                throw BeyondTheLoopLimit(
+                    "the GPU cannot trace one ray of the tile at (" + std::to_string(tx) + ", " +
+                    std::to_string(ty) + ") within the driver's loop limit (" + c_.info.name +
+                    " ends every loop of an invocation after a fixed "
+                    "number of turns; llvmpipe's is 65 535), so the result would be "
+                    "wrong. Render with --cpu, or make the scene simpler for one ray "
+                    "(fewer lights, objects or triangles along it)");
             turnBudget = std::max<uint>(1, turnBudget / 4);
         }
     }
 
     // One dispatch over the tile; `first`: its rays start afresh.
-    GpuDispatchStatus dispatch(int tx, int ty, int w, int h, int block, uint turnBudget, bool first) {
+    GpuDispatchStatus dispatch(int tx, int ty, int w, int h, int block, uint turnBudget,
+                               bool first) {
         const uint raysX = uint((w + block - 1) / block), raysY = uint((h + block - 1) / block);
         const TileParams tileParams{{uint(tx), uint(ty), uint(w), uint(h)},
                                     {turnBudget, first ? 1u : 0u, kCanaryTurns, raysX},
@@ -262,8 +277,8 @@ public:
         commands_.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.pipeline);
         commands_.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.layout, 0, *set_,
                                      nullptr);
-        commands_.pushConstants<TileParams>(*pipeline_.layout, vk::ShaderStageFlagBits::eCompute,
-                                            0, tileParams);
+        commands_.pushConstants<TileParams>(*pipeline_.layout, vk::ShaderStageFlagBits::eCompute, 0,
+                                            tileParams);
         const uint groupX = pipeline_.workgroupX, groupY = pipeline_.workgroupY;
         commands_.dispatch((raysX + groupX - 1) / groupX, (raysY + groupY - 1) / groupY, 1);
         // Shader writes must be visible to the host before the read-back.
@@ -325,17 +340,19 @@ private:
 
     Context::Impl& c_;
     const Pipeline& pipeline_;
-    std::map<uint, BindingKind> kinds_;  // the variant's bindings
-    uint firstSample_, endSample_;  // the samples each ray traces
+    std::map<uint, BindingKind> kinds_;                    // the variant's bindings
+    uint firstSample_, endSample_;                         // the samples each ray traces
     std::map<uint, std::unique_ptr<HostBuffer>> buffers_;  // by binding
-    std::vector<vk::raii::BufferView> views_;  // of the texel buffers
+    std::vector<vk::raii::BufferView> views_;              // of the texel buffers
     vk::raii::DescriptorPool pool_ = nullptr;
     vk::raii::DescriptorSet set_ = nullptr;
     vk::raii::CommandBuffer commands_ = nullptr;
     vk::raii::Fence fence_ = nullptr;
 };
 
-glm::dvec3 toDvec3(const vec4& v) { return {v.x, v.y, v.z}; }
+glm::dvec3 toDvec3(const vec4& v) {
+    return {v.x, v.y, v.z};
+}
 
 double doubleOf(uint low, uint high) {
     const std::uint64_t bits = std::uint64_t(low) | (std::uint64_t(high) << 32);
@@ -375,13 +392,14 @@ StressSample decodeStressSample(const GpuStressSample& g, bool doubles) {
 void requirePrecisionSupported(Precision precision, const DeviceInfo& device) {
     if (precision == Precision::Fp64 && !device.shaderFloat64)
         throw Error("--precision fp64: the Vulkan device " + std::to_string(device.index) + " (" +
-                    device.name + ") has no shaderFloat64 (double in shaders); use --precision "
+                    device.name +
+                    ") has no shaderFloat64 (double in shaders); use --precision "
                     "robust, another --device (`vkray devices` lists them), or --cpu for the "
                     "double CPU reference");
 }
 
-ShaderFeatures variantFeatures(const Scene& scene, const RenderSettings& settings,
-                               bool allFeatures, Precision precision) {
+ShaderFeatures variantFeatures(const Scene& scene, const RenderSettings& settings, bool allFeatures,
+                               Precision precision) {
     ShaderFeatures features = featuresOf(scene, settings, allFeatures);
     features.doubles = precision == Precision::Fp64;
     return features;
@@ -399,7 +417,9 @@ GpuTracer::GpuTracer(Context& context, GpuRenderOptions options)
 
 GpuTracer::~GpuTracer() = default;
 
-void GpuTracer::setTileListener(TileListener listener) { tileListener_ = std::move(listener); }
+void GpuTracer::setTileListener(TileListener listener) {
+    tileListener_ = std::move(listener);
+}
 
 const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRenderStats& stats) {
     requirePrecisionSupported(options_.precision, context_.device());
@@ -476,8 +496,9 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
         variantFeatures(scene, settings, options_.allFeatures, options_.precision);
     features.stressOutput = stressSamples != nullptr;
     if (stressSamples && scene.lights.size() > STRESS_MAX_LIGHTS)
-        throw Error("the stress output records the feelers of " + std::to_string(STRESS_MAX_LIGHTS) +
-                    " lights; this scene has " + std::to_string(scene.lights.size()));
+        throw Error("the stress output records the feelers of " +
+                    std::to_string(STRESS_MAX_LIGHTS) + " lights; this scene has " +
+                    std::to_string(scene.lights.size()));
     const Pipeline& pipeline = pipelineFor(features, st);
     // Tiles hold whole blocks, so a block never straddles two dispatches;
     // they shrink with the samples per pixel, so that no dispatch runs long,
@@ -493,11 +514,11 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
         (rayStack ? size_t(pendingRayEntries(scene)) *
                         (features.doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask))
                   : 0);
-    const int tile = fitTileSide(std::max(block, side / block * block), block, pixelBytes,
-                                 pipeline.workgroupX, pipeline.workgroupY,
-                                 deviceLimits(context_.device()));
-    TracePass pass(context_.impl(), pipeline, features, features.doubles, scene,
-                   camera, settings, tile);
+    const int tile =
+        fitTileSide(std::max(block, side / block * block), block, pixelBytes, pipeline.workgroupX,
+                    pipeline.workgroupY, deviceLimits(context_.device()));
+    TracePass pass(context_.impl(), pipeline, features, features.doubles, scene, camera, settings,
+                   tile);
     st.setupSeconds = setup.seconds() - st.shader.seconds;
 
     Frame frame(settings.width, settings.height);
@@ -536,11 +557,12 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
                     std::memcpy(&frame.id[i], &p.normal.w, sizeof(std::int32_t));
                     if (stressSamples)
                         (*stressSamples)[i] = decodeStressSample(
-                            pass.stressSamples()[size_t(y) * size_t(w) + size_t(x)], features.doubles);
+                            pass.stressSamples()[size_t(y) * size_t(w) + size_t(x)],
+                            features.doubles);
                 }
             }
-            st.rays += size_t((w + block - 1) / block) * size_t((h + block - 1) / block) *
-                       size_t(samples);
+            st.rays +=
+                size_t((w + block - 1) / block) * size_t((h + block - 1) / block) * size_t(samples);
             ++st.tiles;
             if (progress && !progress(st.rays, totalRays)) throw Interrupted();
         }
@@ -560,9 +582,9 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
     const Scene& scene = inputs.scene;
     const CameraBasis& camera = inputs.camera;
     if (x < 0 || y < 0 || x >= settings.width || y >= settings.height)
-        throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                    ") is outside the " + std::to_string(settings.width) + "x" +
-                    std::to_string(settings.height) + " image");
+        throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the " +
+                    std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+                    " image");
     GpuRenderStats local;
     GpuRenderStats& st = stats ? *stats : local;
     // The debug record describes one ray: the pixel's centre, one sample.
@@ -576,8 +598,8 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
     features.debugPixel = true;
     features.stressOutput = true;
     const Pipeline& pipeline = pipelineFor(features, st);
-    TracePass pass(context_.impl(), pipeline, features, features.doubles, scene,
-                   camera, oneSample, 1);
+    TracePass pass(context_.impl(), pipeline, features, features.doubles, scene, camera, oneSample,
+                   1);
     // A one-pixel tile at the corner of the pixel's block: its one ray is the block's.
     const int block = std::max(settings.block, 1);
     uint turnBudget = kTurnBudget;

@@ -4,17 +4,17 @@
 #pragma once
 
 #include "gpu/context.h"
+#include "gpu/precision.h"
 #include "gpu/shader_variant.h"
 #include "gpu/spirv_cache.h"
 #include "image/frame.h"
 #include "image/pixel_trace.h"
 #include "image/stress_sample.h"
-#include "gpu/precision.h"
 #include "render/camera.h"
-#include "util/error.h"
 #include "render/render_progress.h"
-#include "scene/scene.h"
 #include "render/tile_schedule.h"
+#include "scene/scene.h"
+#include "util/error.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -45,20 +45,21 @@ struct GpuRenderOptions {
 
 struct GpuRenderStats {
     double renderSeconds = 0;  // the dispatch loop, tiles read back included
-    double renderCpuSeconds = 0;  // CPU time of the process (all threads: lavapipe's too) in that loop
-    double setupSeconds = 0;   // buffers, pipeline (shader compile excluded)
-    CompiledShader shader;     // SPIR-V, key, cache hit, compile/load time
-    std::string variant;       // describe(features), e.g. "sphere+cube"
+    double renderCpuSeconds =
+        0;                    // CPU time of the process (all threads: lavapipe's too) in that loop
+    double setupSeconds = 0;  // buffers, pipeline (shader compile excluded)
+    CompiledShader shader;    // SPIR-V, key, cache hit, compile/load time
+    std::string variant;      // describe(features), e.g. "sphere+cube"
     std::size_t tiles = 0;
     std::size_t dispatches = 0;   // a tile takes several when its rays pause (turnBudget)
     std::size_t tilesRedone = 0;  // started over: the driver's loop limit cut a dispatch short
-    std::size_t rays = 0;      // primary rays traced
+    std::size_t rays = 0;         // primary rays traced
 };
 
 // The variant a render of `scene` uses, and its source: what render
 // compiles and `vkray features` reports (the same SPIR-V cache key).
-ShaderFeatures variantFeatures(const Scene& scene, const RenderSettings& settings,
-                               bool allFeatures, Precision precision);
+ShaderFeatures variantFeatures(const Scene& scene, const RenderSettings& settings, bool allFeatures,
+                               Precision precision);
 ShaderSource variantSource(const std::string& shaderDirectory, const ShaderFeatures& features,
                            Precision precision, const Defines& userDefines);
 
@@ -122,8 +123,8 @@ public:
 private:
     const Pipeline& pipelineFor(const ShaderFeatures& features, GpuRenderStats& stats);
     Frame renderFrame(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
-                      GpuRenderStats* stats, const RenderProgress& progress,
-                      TileSchedule* schedule, std::vector<StressSample>* stressSamples);
+                      GpuRenderStats* stats, const RenderProgress& progress, TileSchedule* schedule,
+                      std::vector<StressSample>* stressSamples);
 
     Context& context_;
     GpuRenderOptions options_;

@@ -30,7 +30,8 @@ static_assert(sizeof(GpuLight) == LIGHT_TEXELS * kTexel);
 static_assert(sizeof(GpuBvhNode) == BVH_NODE_TEXELS * kTexel);
 static_assert(sizeof(GpuTriangle) == TRIANGLE_TEXELS * kTexel);
 static_assert(sizeof(GpuDoubleObject) == DOUBLE_OBJECT_TEXELS * kTexel);
-static_assert(sizeof(GpuMesh) == kTexel && sizeof(GpuCsgNode) == kTexel && sizeof(GpuPixmap) == kTexel);
+static_assert(sizeof(GpuMesh) == kTexel && sizeof(GpuCsgNode) == kTexel &&
+              sizeof(GpuPixmap) == kTexel);
 
 static_assert(sizeof(GpuPixmap) == 16);
 

@@ -3,15 +3,15 @@
 #include "gpu/context_impl.h"
 #include "gpu/spirv_cache.h"
 #include "image/stb_codecs.h"
-#include "util/error.h"
 #include "shaders/layout.h"
+#include "util/error.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <optional>
-#include <array>
 #include <vector>
 
 namespace vkray::gpu {
@@ -23,8 +23,16 @@ namespace {
 // [0, 1], whose bit patterns are ordered as their values.
 std::vector<float> byteThresholds() {
     std::vector<float> from(256, -std::numeric_limits<float>::infinity());
-    const auto bits = [](float f) { std::uint32_t u; std::memcpy(&u, &f, 4); return u; };
-    const auto value = [](std::uint32_t u) { float f; std::memcpy(&f, &u, 4); return f; };
+    const auto bits = [](float f) {
+        std::uint32_t u;
+        std::memcpy(&u, &f, 4);
+        return u;
+    };
+    const auto value = [](std::uint32_t u) {
+        float f;
+        std::memcpy(&f, &u, 4);
+        return f;
+    };
     for (int b = 1; b < 256; ++b) {
         std::uint32_t lo = bits(0.0f), hi = bits(1.0f);  // pngByte(lo) < b <= pngByte(hi)
         while (hi - lo > 1) {
@@ -46,8 +54,12 @@ GpuPixel toGpuPixel(const Frame& frame, size_t i) {
 
 // The 8-bit formats the view's bytes copy into as they are (a copy does no
 // conversion, so an sRGB format shows the same bytes as a UNORM one).
-bool isBgra(vk::Format f) { return f == vk::Format::eB8G8R8A8Unorm || f == vk::Format::eB8G8R8A8Srgb; }
-bool isRgba(vk::Format f) { return f == vk::Format::eR8G8B8A8Unorm || f == vk::Format::eR8G8B8A8Srgb; }
+bool isBgra(vk::Format f) {
+    return f == vk::Format::eB8G8R8A8Unorm || f == vk::Format::eB8G8R8A8Srgb;
+}
+bool isRgba(vk::Format f) {
+    return f == vk::Format::eR8G8B8A8Unorm || f == vk::Format::eR8G8B8A8Srgb;
+}
 
 }  // namespace
 
@@ -79,7 +91,10 @@ struct Presenter::Impl {
     bool bgra = false;
 
     Impl(Context::Impl& context, int w, int h)
-        : c(context), width(w), height(h), pixels(size_t(w) * size_t(h)),
+        : c(context),
+          width(w),
+          height(h),
+          pixels(size_t(w) * size_t(h)),
           sums(c, sizeof(vec4) * pixels, vk::BufferUsageFlagBits::eStorageBuffer),
           aovs(c, sizeof(GpuPixel) * pixels, vk::BufferUsageFlagBits::eStorageBuffer),
           cpu(c, sizeof(GpuPixel) * pixels, vk::BufferUsageFlagBits::eStorageBuffer),
@@ -100,7 +115,8 @@ struct Presenter::Impl {
     void recordDispatch(const PresentParams& params) {
         commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline);
         commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout, 0, *set, nullptr);
-        commands.pushConstants<PresentParams>(*layout, vk::ShaderStageFlagBits::eCompute, 0, params);
+        commands.pushConstants<PresentParams>(*layout, vk::ShaderStageFlagBits::eCompute, 0,
+                                              params);
         commands.dispatch((params.rect.z + PRESENT_WORKGROUP - 1) / PRESENT_WORKGROUP,
                           (params.rect.w + PRESENT_WORKGROUP - 1) / PRESENT_WORKGROUP, 1);
     }
@@ -109,8 +125,9 @@ struct Presenter::Impl {
         commands.reset();
         commands.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
         // The tracer's (and the last composition's) shader writes, before these reads.
-        const vk::MemoryBarrier written(vk::AccessFlagBits::eShaderWrite,
-                                        vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+        const vk::MemoryBarrier written(
+            vk::AccessFlagBits::eShaderWrite,
+            vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
         commands.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
                                  vk::PipelineStageFlagBits::eComputeShader, {}, written, nullptr,
                                  nullptr);
@@ -130,7 +147,8 @@ struct Presenter::Impl {
     }
 
     void makeSwapchain() {
-        const vk::SurfaceCapabilitiesKHR caps = c.physicalDevice.getSurfaceCapabilitiesKHR(*surface);
+        const vk::SurfaceCapabilitiesKHR caps =
+            c.physicalDevice.getSurfaceCapabilitiesKHR(*surface);
         extent = caps.currentExtent;
         if (extent.width == std::numeric_limits<std::uint32_t>::max())
             extent = vk::Extent2D(std::clamp(std::uint32_t(width), caps.minImageExtent.width,
@@ -144,23 +162,29 @@ struct Presenter::Impl {
         recreate = false;
         if (extent.width == 0 || extent.height == 0) return;  // minimised: nothing to show on
         if (!(caps.supportedUsageFlags & vk::ImageUsageFlagBits::eTransferDst))
-            throw Error("the window's surface cannot be copied to (no transfer-destination "
-                        "usage on " + c.info.name + "); use `vkray render --watch`");
+            throw Error(
+                "the window's surface cannot be copied to (no transfer-destination "
+                "usage on " +
+                c.info.name + "); use `vkray render --watch`");
         std::uint32_t count = caps.minImageCount + 1;
         if (caps.maxImageCount > 0) count = std::min(count, caps.maxImageCount);
         vk::CompositeAlphaFlagBitsKHR alpha = vk::CompositeAlphaFlagBitsKHR::eOpaque;
-        for (const auto candidate : {vk::CompositeAlphaFlagBitsKHR::eOpaque,
-                                     vk::CompositeAlphaFlagBitsKHR::eInherit,
-                                     vk::CompositeAlphaFlagBitsKHR::ePreMultiplied,
-                                     vk::CompositeAlphaFlagBitsKHR::ePostMultiplied})
-            if (caps.supportedCompositeAlpha & candidate) { alpha = candidate; break; }
-        vk::SwapchainCreateInfoKHR info(
-            {}, *surface, count, format.format, format.colorSpace, extent, 1,
-            vk::ImageUsageFlagBits::eTransferDst, vk::SharingMode::eExclusive, {},
-            caps.currentTransform, alpha, presentMode, VK_TRUE);
+        for (const auto candidate :
+             {vk::CompositeAlphaFlagBitsKHR::eOpaque, vk::CompositeAlphaFlagBitsKHR::eInherit,
+              vk::CompositeAlphaFlagBitsKHR::ePreMultiplied,
+              vk::CompositeAlphaFlagBitsKHR::ePostMultiplied})
+            if (caps.supportedCompositeAlpha & candidate) {
+                alpha = candidate;
+                break;
+            }
+        vk::SwapchainCreateInfoKHR info({}, *surface, count, format.format, format.colorSpace,
+                                        extent, 1, vk::ImageUsageFlagBits::eTransferDst,
+                                        vk::SharingMode::eExclusive, {}, caps.currentTransform,
+                                        alpha, presentMode, VK_TRUE);
         swapchain = vk::raii::SwapchainKHR(c.device, info);
         images = swapchain.getImages();
-        for (size_t i = 0; i < images.size(); ++i) presentReady.emplace_back(c.device, vk::SemaphoreCreateInfo{});
+        for (size_t i = 0; i < images.size(); ++i)
+            presentReady.emplace_back(c.device, vk::SemaphoreCreateInfo{});
     }
 };
 
@@ -169,7 +193,8 @@ Presenter::Presenter(Context& context, const std::string& shaderDirectory,
     : impl_(std::make_unique<Impl>(context.impl(), width, height)) {
     Impl& s = *impl_;
     Context::Impl& c = s.c;
-    const std::uint64_t handle = makeSurface(static_cast<void*>(static_cast<VkInstance>(*c.instance)));
+    const std::uint64_t handle =
+        makeSurface(static_cast<void*>(static_cast<VkInstance>(*c.instance)));
     VkSurfaceKHR surface;
     static_assert(sizeof surface == sizeof handle);
     std::memcpy(&surface, &handle, sizeof surface);
@@ -178,23 +203,27 @@ Presenter::Presenter(Context& context, const std::string& shaderDirectory,
         throw Error("the Vulkan device " + std::to_string(c.info.index) + " (" + c.info.name +
                     ") cannot present to this window from its compute queue; choose another "
                     "with --device, or use `vkray render --watch`");
-    const std::vector<vk::SurfaceFormatKHR> formats = c.physicalDevice.getSurfaceFormatsKHR(*s.surface);
-    const auto found = std::find_if(formats.begin(), formats.end(), [](const vk::SurfaceFormatKHR& f) {
-        return isBgra(f.format) || isRgba(f.format);
-    });
+    const std::vector<vk::SurfaceFormatKHR> formats =
+        c.physicalDevice.getSurfaceFormatsKHR(*s.surface);
+    const auto found = std::find_if(
+        formats.begin(), formats.end(),
+        [](const vk::SurfaceFormatKHR& f) { return isBgra(f.format) || isRgba(f.format); });
     if (found == formats.end())
-        throw Error("the window offers no 8-bit RGBA or BGRA format to copy the view into; use "
-                    "`vkray render --watch`");
+        throw Error(
+            "the window offers no 8-bit RGBA or BGRA format to copy the view into; use "
+            "`vkray render --watch`");
     // UNORM before sRGB, though both show the bytes as they are.
     s.format = *found;
     for (const vk::SurfaceFormatKHR& f : formats)
-        if (f.format == vk::Format::eB8G8R8A8Unorm || f.format == vk::Format::eR8G8B8A8Unorm) s.format = f;
+        if (f.format == vk::Format::eB8G8R8A8Unorm || f.format == vk::Format::eR8G8B8A8Unorm)
+            s.format = f;
     s.bgra = isBgra(s.format.format);
     // Not tied to the display's refresh where the window system allows: the
     // render loop must not wait for it between tiles.
-    const std::vector<vk::PresentModeKHR> modes = c.physicalDevice.getSurfacePresentModesKHR(*s.surface);
-    for (const auto mode : {vk::PresentModeKHR::eFifo, vk::PresentModeKHR::eImmediate,
-                            vk::PresentModeKHR::eMailbox})
+    const std::vector<vk::PresentModeKHR> modes =
+        c.physicalDevice.getSurfacePresentModesKHR(*s.surface);
+    for (const auto mode :
+         {vk::PresentModeKHR::eFifo, vk::PresentModeKHR::eImmediate, vk::PresentModeKHR::eMailbox})
         if (std::find(modes.begin(), modes.end(), mode) != modes.end()) s.presentMode = mode;
     s.makeSwapchain();
 
@@ -214,30 +243,35 @@ Presenter::Presenter(Context& context, const std::string& shaderDirectory,
 
     std::vector<vk::DescriptorSetLayoutBinding> bindings;
     for (uint b = PRESENT_BINDING_TILE; b <= PRESENT_BINDING_RANGE; ++b)
-        bindings.emplace_back(b, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute);
+        bindings.emplace_back(b, vk::DescriptorType::eStorageBuffer, 1,
+                              vk::ShaderStageFlagBits::eCompute);
     s.setLayout = vk::raii::DescriptorSetLayout(c.device, {{}, bindings});
-    const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0, sizeof(PresentParams));
+    const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0,
+                                          sizeof(PresentParams));
     s.layout = vk::raii::PipelineLayout(c.device, {{}, *s.setLayout, pushRange});
     const CompiledShader shader = loadOrCompile({shaderDirectory, "present.comp", {}});
     s.module = vk::raii::ShaderModule(c.device, {{}, shader.spirv});
     s.pipeline = vk::raii::Pipeline(
         c.device, nullptr,
-        vk::ComputePipelineCreateInfo({}, {{}, vk::ShaderStageFlagBits::eCompute, *s.module, "main"},
-                                      *s.layout));
-    const vk::DescriptorPoolSize poolSize(vk::DescriptorType::eStorageBuffer, uint(bindings.size()));
+        vk::ComputePipelineCreateInfo(
+            {}, {{}, vk::ShaderStageFlagBits::eCompute, *s.module, "main"}, *s.layout));
+    const vk::DescriptorPoolSize poolSize(vk::DescriptorType::eStorageBuffer,
+                                          uint(bindings.size()));
     s.pool = vk::raii::DescriptorPool(
         c.device, {vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, poolSize});
     s.set = std::move(vk::raii::DescriptorSets(c.device, {*s.pool, *s.setLayout}).front());
-    const std::array<const HostBuffer*, 7> buffers{&s.aovs, &s.sums, &s.aovs, &s.cpu,
+    const std::array<const HostBuffer*, 7> buffers{&s.aovs, &s.sums,  &s.aovs, &s.cpu,
                                                    &s.view, &s.bytes, &s.range};
     std::vector<vk::DescriptorBufferInfo> infos;
     for (const HostBuffer* buffer : buffers) infos.emplace_back(buffer->buffer(), 0, VK_WHOLE_SIZE);
     std::vector<vk::WriteDescriptorSet> writes;
     for (uint b = 0; b < infos.size(); ++b)
-        writes.emplace_back(*s.set, b, 0, 1, vk::DescriptorType::eStorageBuffer, nullptr, &infos[b]);
+        writes.emplace_back(*s.set, b, 0, 1, vk::DescriptorType::eStorageBuffer, nullptr,
+                            &infos[b]);
     c.device.updateDescriptorSets(writes, nullptr);
     s.commands = std::move(
-        vk::raii::CommandBuffers(c.device, {*c.commandPool, vk::CommandBufferLevel::ePrimary, 1}).front());
+        vk::raii::CommandBuffers(c.device, {*c.commandPool, vk::CommandBufferLevel::ePrimary, 1})
+            .front());
     s.fence = vk::raii::Fence(c.device, vk::FenceCreateInfo{});
     s.acquired = vk::raii::Semaphore(c.device, vk::SemaphoreCreateInfo{});
 } catch (const vk::SystemError& failure) {
@@ -295,44 +329,51 @@ void Presenter::show(const ViewSettings& settings) try {
     if (!s.images.empty()) {
         try {
             const auto [result, index] = s.swapchain.acquireNextImage(UINT64_MAX, *s.acquired);
-            if (result == vk::Result::eSuccess || result == vk::Result::eSuboptimalKHR) image = index;
+            if (result == vk::Result::eSuccess || result == vk::Result::eSuboptimalKHR)
+                image = index;
             if (result == vk::Result::eSuboptimalKHR) s.recreate = true;
         } catch (const vk::OutOfDateKHRError&) {
             s.recreate = true;
         }
     }
     s.begin();
-    s.recordDispatch({{0, 0, uint(s.width), uint(s.height)},
-                      {PRESENT_COMPOSE, uint(settings.view), settings.cpuReference ? 1u : 0u,
-                       s.bgra ? 1u : 0u},
-                      {settings.depthNear, settings.depthFar, settings.threshold, 0}});
-    const vk::MemoryBarrier composed(vk::AccessFlagBits::eShaderWrite,
-                                     vk::AccessFlagBits::eTransferRead | vk::AccessFlagBits::eHostRead);
-    s.commands.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
-                               vk::PipelineStageFlagBits::eTransfer | vk::PipelineStageFlagBits::eHost,
-                               {}, composed, nullptr, nullptr);
+    s.recordDispatch(
+        {{0, 0, uint(s.width), uint(s.height)},
+         {PRESENT_COMPOSE, uint(settings.view), settings.cpuReference ? 1u : 0u, s.bgra ? 1u : 0u},
+         {settings.depthNear, settings.depthFar, settings.threshold, 0}});
+    const vk::MemoryBarrier composed(
+        vk::AccessFlagBits::eShaderWrite,
+        vk::AccessFlagBits::eTransferRead | vk::AccessFlagBits::eHostRead);
+    s.commands.pipelineBarrier(
+        vk::PipelineStageFlagBits::eComputeShader,
+        vk::PipelineStageFlagBits::eTransfer | vk::PipelineStageFlagBits::eHost, {}, composed,
+        nullptr, nullptr);
     if (image) {
         const vk::Image target = s.images[*image];
         const vk::ImageSubresourceRange whole(vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1);
-        const vk::ImageMemoryBarrier toCopy({}, vk::AccessFlagBits::eTransferWrite,
-                                            vk::ImageLayout::eUndefined,
-                                            vk::ImageLayout::eTransferDstOptimal, VK_QUEUE_FAMILY_IGNORED,
-                                            VK_QUEUE_FAMILY_IGNORED, target, whole);
+        const vk::ImageMemoryBarrier toCopy(
+            {}, vk::AccessFlagBits::eTransferWrite, vk::ImageLayout::eUndefined,
+            vk::ImageLayout::eTransferDstOptimal, VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED,
+            target, whole);
         s.commands.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer,
-                                   vk::PipelineStageFlagBits::eTransfer, {}, nullptr, nullptr, toCopy);
+                                   vk::PipelineStageFlagBits::eTransfer, {}, nullptr, nullptr,
+                                   toCopy);
         const std::uint32_t w = std::min(s.extent.width, std::uint32_t(s.width));
         const std::uint32_t h = std::min(s.extent.height, std::uint32_t(s.height));
-        if (w < s.extent.width || h < s.extent.height)  // a window larger than the image: black around it
+        if (w < s.extent.width ||
+            h < s.extent.height)  // a window larger than the image: black around it
             s.commands.clearColorImage(target, vk::ImageLayout::eTransferDstOptimal,
-                                       vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 1}), whole);
+                                       vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 1}),
+                                       whole);
         const vk::BufferImageCopy region(0, std::uint32_t(s.width), std::uint32_t(s.height),
                                          {vk::ImageAspectFlagBits::eColor, 0, 0, 1}, {0, 0, 0},
                                          {w, h, 1});
-        s.commands.copyBufferToImage(s.view.buffer(), target, vk::ImageLayout::eTransferDstOptimal, region);
-        const vk::ImageMemoryBarrier toPresent(vk::AccessFlagBits::eTransferWrite, {},
-                                               vk::ImageLayout::eTransferDstOptimal,
-                                               vk::ImageLayout::ePresentSrcKHR, VK_QUEUE_FAMILY_IGNORED,
-                                               VK_QUEUE_FAMILY_IGNORED, target, whole);
+        s.commands.copyBufferToImage(s.view.buffer(), target, vk::ImageLayout::eTransferDstOptimal,
+                                     region);
+        const vk::ImageMemoryBarrier toPresent(
+            vk::AccessFlagBits::eTransferWrite, {}, vk::ImageLayout::eTransferDstOptimal,
+            vk::ImageLayout::ePresentSrcKHR, VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED,
+            target, whole);
         s.commands.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer,
                                    vk::PipelineStageFlagBits::eBottomOfPipe, {}, nullptr, nullptr,
                                    toPresent);

@@ -66,8 +66,8 @@ private:
 
 std::string glslangVersion() {
     const glslang::Version v = glslang::GetVersion();
-    return std::to_string(v.major) + "." + std::to_string(v.minor) + "." +
-           std::to_string(v.patch) + v.flavor;
+    return std::to_string(v.major) + "." + std::to_string(v.minor) + "." + std::to_string(v.patch) +
+           v.flavor;
 }
 
 std::vector<std::uint32_t> compileComputeShader(const ShaderSource& source) {
@@ -108,7 +108,8 @@ std::vector<std::uint32_t> compileComputeShader(const ShaderSource& source) {
     glslang::SpvOptions options;
     options.disableOptimizer = false;
     glslang::GlslangToSpv(*program.getIntermediate(EShLangCompute), spirv, &logger, &options);
-    if (spirv.empty()) throw Error("SPIR-V generation failed (" + name + "): " + logger.getAllMessages());
+    if (spirv.empty())
+        throw Error("SPIR-V generation failed (" + name + "): " + logger.getAllMessages());
     return spirv;
 }
 

@@ -10,8 +10,8 @@
 namespace vkray::gpu {
 
 struct ShaderSource {
-    std::string directory;               // the shader folder (shaders/ or --shader-dir)
-    std::string mainFile = "trace.comp"; // relative to directory
+    std::string directory;                // the shader folder (shaders/ or --shader-dir)
+    std::string mainFile = "trace.comp";  // relative to directory
     std::vector<std::pair<std::string, std::string>> defines;  // NAME, VALUE
 };
 

@@ -2,9 +2,9 @@
 
 #include "gpu/context.h"
 
-#include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "shaders/layout.h"
+#include "util/error.h"
 
 #include <algorithm>
 #include <bit>
@@ -101,8 +101,9 @@ std::vector<std::string> variantFlags() {
     std::vector<std::string> flags;
     for (const GpuKind& kind : kGpuKinds) flags.push_back(kind.define);
     for (const GpuShading& shading : kGpuShading) flags.push_back(shading.define);
-    for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_DEBUG_PIXEL", "VKRAY_STRESS_OUTPUT",
-                              "VKRAY_FAULT_NO_OFFSET", "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64"})
+    for (const char* other :
+         {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_DEBUG_PIXEL", "VKRAY_STRESS_OUTPUT",
+          "VKRAY_FAULT_NO_OFFSET", "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64"})
         flags.push_back(other);
     return flags;
 }
@@ -119,7 +120,8 @@ std::string describe(const ShaderFeatures& features) {
     if (count == kGpuKinds.size()) text = "all shapes";
     if (count == 0) text = "no shapes";
     const auto shading = std::count(features.shading.begin(), features.shading.end(), true);
-    if (shading == std::ssize(features.shading)) text += "+all shading";
+    if (shading == std::ssize(features.shading))
+        text += "+all shading";
     else
         for (std::size_t i = 0; i < kGpuShading.size(); ++i)
             if (features.shading[i]) text += std::string("+") + kGpuShading[i].name;
@@ -163,7 +165,8 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
         bindings.push_back({BINDING_DOUBLE_CAMERA, "camera in double", Storage});
         bindings.push_back({BINDING_DOUBLE_OBJECTS, "objects' M^-1 in double", Texels});
     }
-    if (features.stressOutput) bindings.push_back({BINDING_STRESS_OUTPUT, "stress output", Storage});
+    if (features.stressOutput)
+        bindings.push_back({BINDING_STRESS_OUTPUT, "stress output", Storage});
     return bindings;
 }
 

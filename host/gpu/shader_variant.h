@@ -60,11 +60,11 @@ inline constexpr std::array<GpuShading, 6> kGpuShading{{
 struct ShaderFeatures {
     std::array<bool, kGpuKinds.size()> kinds{};      // indexed by KIND_*
     std::array<bool, kGpuShading.size()> shading{};  // indexed by Shading
-    bool lights = true;       // the scene has lights (without, no light code: VKRAY_LIGHTS 0)
-    bool objectBvh = false;   // objects found through a BVH
-    bool debugPixel = false;  // `vkray pixel`: the shader writes a trace record
+    bool lights = true;         // the scene has lights (without, no light code: VKRAY_LIGHTS 0)
+    bool objectBvh = false;     // objects found through a BVH
+    bool debugPixel = false;    // `vkray pixel`: the shader writes a trace record
     bool stressOutput = false;  // `vkray stress`, `vkray pixel`: GpuStressSample per pixel
-    bool doubles = false;     // --precision fp64: camera and M^-1 read in double
+    bool doubles = false;       // --precision fp64: camera and M^-1 read in double
 
     bool has(Shading s) const { return shading[size_t(s)]; }
     bool operator==(const ShaderFeatures&) const = default;
@@ -92,10 +92,10 @@ std::string describe(const ShaderFeatures& features);
 
 // How the shader reads a binding (shaders/layout.h, "Descriptor bindings").
 enum class BindingKind {
-    Uniform,      // a uniform buffer
-    Storage,      // a storage buffer (what the shader writes, and the fp64 camera)
-    Texels,       // a read-only storage texel buffer, rgba32ui (uimageBuffer)
-    UintTexels,   // the same, r32ui
+    Uniform,     // a uniform buffer
+    Storage,     // a storage buffer (what the shader writes, and the fp64 camera)
+    Texels,      // a read-only storage texel buffer, rgba32ui (uimageBuffer)
+    UintTexels,  // the same, r32ui
 };
 
 // One descriptor (set 0) a variant declares: the host creates and uploads a

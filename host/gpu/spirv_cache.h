@@ -13,9 +13,9 @@ namespace vkray::gpu {
 
 struct CompiledShader {
     std::vector<std::uint32_t> spirv;
-    std::string key;      // 16 hex digits
+    std::string key;  // 16 hex digits
     bool cacheHit = false;
-    double seconds = 0;   // load or compile time
+    double seconds = 0;  // load or compile time
 };
 
 // $VKRAY_CACHE_DIR, else $XDG_CACHE_HOME/vkray, else $HOME/.cache/vkray.

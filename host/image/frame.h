@@ -21,8 +21,12 @@ struct Frame {
 
     Frame() = default;
     Frame(int w, int h)
-        : width(w), height(h), color(size_t(w) * h), depth(size_t(w) * h),
-          normal(size_t(w) * h), id(size_t(w) * h, -1) {}
+        : width(w),
+          height(h),
+          color(size_t(w) * h),
+          depth(size_t(w) * h),
+          normal(size_t(w) * h),
+          id(size_t(w) * h, -1) {}
 
     size_t pixelCount() const { return size_t(width) * size_t(height); }
     size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }

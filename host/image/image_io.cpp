@@ -4,15 +4,14 @@
 #include "image/pfm.h"
 #include "image/stb_codecs.h"
 
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <optional>
@@ -94,8 +93,7 @@ Image decodeImage(const std::string& bytes, const std::string& path) {
     switch (formatOf(path, true)) {
     case Format::Png: return decodePng(path, bytes);
     case Format::Bmp: return decodeBmp(path, bytes);
-    case Format::Exr:
-        return decodeExrImage(path, bytes);
+    case Format::Exr: return decodeExrImage(path, bytes);
     default: return decodePfm(path, bytes);
     }
 }
@@ -127,8 +125,8 @@ void stageImage(StagedFiles& files, const std::string& path, const Image& image)
     const Format format = formatOf(path, false);
     requireWritable(path, image);
     files.stage(path, format == Format::Png   ? encodePng(path, image)
-                : format == Format::Exr ? encodeExr(exrFromImage(image), path)
-                                        : encodePfm(image));
+                      : format == Format::Exr ? encodeExr(exrFromImage(image), path)
+                                              : encodePfm(image));
 }
 
 }  // namespace vkray

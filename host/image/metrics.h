@@ -17,17 +17,17 @@ struct CompareOptions {
 };
 
 struct CompareResult {
-    double maxAbsError = 0;      // over all pixels and channels
+    double maxAbsError = 0;  // over all pixels and channels
     int maxErrorX = 0, maxErrorY = 0;
-    double rmse = 0;             // over all pixels and channels
-    double psnr = 0;             // 20 log10(1 / rmse), peak 1; +inf when identical
+    double rmse = 0;  // over all pixels and channels
+    double psnr = 0;  // 20 log10(1 / rmse), peak 1; +inf when identical
     std::size_t pixelsOverThreshold = 0;
     double percentOverThreshold = 0;
     std::size_t pixelCount = 0;
     // Only when object-id images were given.
     std::optional<std::size_t> idMismatches;
     double idMismatchPercent = 0;
-    bool passed = true;          // percentOverThreshold <= failPercent
+    bool passed = true;  // percentOverThreshold <= failPercent
 };
 
 // Colour values are compared clamped to [0,1] (what a display shows), so a

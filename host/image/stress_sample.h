@@ -14,8 +14,8 @@ namespace vkray {
 
 struct StressSample {
     double t = std::numeric_limits<double>::infinity();  // +inf on a miss
-    glm::dvec3 normal{0};  // world unit geometric normal, facing the ray
-    int object = -1;       // -1: the background
+    glm::dvec3 normal{0};   // world unit geometric normal, facing the ray
+    int object = -1;        // -1: the background
     bool inDouble = false;  // t and normal computed and returned in double (fp64)
     // Shadow feelers from the hit, bit i for light i (the first 32 lights):
     std::uint32_t feelersTraced = 0;   // traced (the light is on the lit side)
@@ -23,7 +23,7 @@ struct StressSample {
     std::uint32_t feelersMetLeft = 0;  // met the object they left
     // The ray refracted into the hit surface, where the shader follows one.
     bool refractedTraced = false;
-    int refractedObject = -1;      // what it met (-1: nothing)
+    int refractedObject = -1;  // what it met (-1: nothing)
     double refractedT = std::numeric_limits<double>::infinity();
     glm::dvec3 refractedPoint{0};  // where, relative to the eye
 

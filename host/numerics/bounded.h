@@ -38,18 +38,26 @@ struct Bounded {
 };
 
 namespace bounded_detail {
-inline Quad grow(const Quad& bound) { return bound * (1 + ldexp(Quad(1), -100)); }
-inline Quad rounding(const Quad& v) { return kQuadUnit * abs(v); }
+inline Quad grow(const Quad& bound) {
+    return bound * (1 + ldexp(Quad(1), -100));
+}
+inline Quad rounding(const Quad& v) {
+    return kQuadUnit * abs(v);
+}
 }  // namespace bounded_detail
 
-inline Bounded operator-(const Bounded& a) { return {-a.v, a.e}; }
+inline Bounded operator-(const Bounded& a) {
+    return {-a.v, a.e};
+}
 
 inline Bounded operator+(const Bounded& a, const Bounded& b) {
     const Quad v = a.v + b.v;
     return {v, bounded_detail::grow(a.e + b.e + bounded_detail::rounding(v))};
 }
 
-inline Bounded operator-(const Bounded& a, const Bounded& b) { return a + (-b); }
+inline Bounded operator-(const Bounded& a, const Bounded& b) {
+    return a + (-b);
+}
 
 inline Bounded operator*(const Bounded& a, const Bounded& b) {
     const Quad v = a.v * b.v;
@@ -75,6 +83,8 @@ inline Bounded sqrt(const Bounded& a) {
     return {v, bounded_detail::grow(from + bounded_detail::rounding(v))};
 }
 
-inline Bounded abs(const Bounded& a) { return {boost::multiprecision::abs(a.v), a.e}; }
+inline Bounded abs(const Bounded& a) {
+    return {boost::multiprecision::abs(a.v), a.e};
+}
 
 }  // namespace vkray::numerics

@@ -10,7 +10,9 @@ namespace vkray::numerics {
 
 namespace {
 
-int signOf(const Bounded& x) { return x.positive() ? 1 : x.negative() ? -1 : 0; }
+int signOf(const Bounded& x) {
+    return x.positive() ? 1 : x.negative() ? -1 : 0;
+}
 
 // A quotient's bracket: [v - e, v + e].
 ExactCrossing crossingAt(const Bounded& t, const BVec& normal, CrossingKind kind) {
@@ -18,7 +20,9 @@ ExactCrossing crossingAt(const Bounded& t, const BVec& normal, CrossingKind kind
 }
 
 // Whether |x| <= limit: 1 certainly inside, -1 certainly outside, 0 the oracle cannot tell.
-int within(const Bounded& x, const Bounded& limit) { return signOf(limit - abs(x)); }
+int within(const Bounded& x, const Bounded& limit) {
+    return signOf(limit - abs(x));
+}
 
 CrossingKind kindOf(RootKind kind) {
     switch (kind) {
@@ -40,14 +44,16 @@ BVec pointAt(const BVec& o, const BVec& d, const Quad& t, const Quad& bound) {
 std::vector<Root> rootsWithin(const Bounded* c, int degree, Quad reach,
                               const std::function<Bounded(const Quad&)>& f) {
     for (int attempt = 0; attempt < 8; ++attempt, reach *= 1 + ldexp(Quad(1), -20)) {
-        if (f(-reach).certain() && f(reach).certain()) return polynomialRoots(c, degree, -reach, reach, f);
+        if (f(-reach).certain() && f(reach).certain())
+            return polynomialRoots(c, degree, -reach, reach, f);
     }
     return {Root{-reach, reach, RootKind::Unresolved}};
 }
 
 // (|o| + extent) / |d|, a little more: beyond it |p| > extent.
 Quad reachOf(const BVec& o, const BVec& d, double extent) {
-    const Quad lengthO = sqrt(dot(valueOf(o), valueOf(o))), lengthD = sqrt(dot(valueOf(d), valueOf(d)));
+    const Quad lengthO = sqrt(dot(valueOf(o), valueOf(o))),
+               lengthD = sqrt(dot(valueOf(d), valueOf(d)));
     return (lengthO + Quad(extent)) / lengthD * (1 + ldexp(Quad(1), -30)) + ldexp(Quad(1), -60);
 }
 
@@ -126,7 +132,8 @@ ExactCrossings cubeCrossings(const BVec& o, const BVec& d) {
             if (inside < 0) continue;
             BVec normal{Bounded(0), Bounded(0), Bounded(0)};
             normal[axis] = Bounded(double(side));
-            out.add(crossingAt(t, normal, inside > 0 ? CrossingKind::Crossing : CrossingKind::Edge));
+            out.add(
+                crossingAt(t, normal, inside > 0 ? CrossingKind::Crossing : CrossingKind::Edge));
         }
     }
     out.finish();
@@ -160,7 +167,8 @@ ExactCrossings taperedCylinderCrossings(const BVec& o, const BVec& d, double s) 
         const bool onRim = below == 0 || above == 0;
         // Across the wall it curves like a circle of radius |rho| (along it, not at all).
         const double radius = std::abs(double(rho(p.z).v));
-        out.add({root.at(), root.halfWidth(), normal, onRim ? CrossingKind::Edge : kindOf(root.kind),
+        out.add({root.at(), root.halfWidth(), normal,
+                 onRim ? CrossingKind::Edge : kindOf(root.kind),
                  radius > 0 ? 1 / radius : std::numeric_limits<double>::infinity()});
     }
     if (d.z.certain()) {
@@ -172,7 +180,8 @@ ExactCrossings taperedCylinderCrossings(const BVec& o, const BVec& d, double s) 
             const int inside = signOf(radius2 - (p.x * p.x + p.y * p.y));
             if (inside < 0) continue;
             const BVec normal{Bounded(0), Bounded(0), Bounded(cap == 0 ? -1.0 : 1.0)};
-            out.add(crossingAt(t, normal, inside > 0 ? CrossingKind::Crossing : CrossingKind::Edge));
+            out.add(
+                crossingAt(t, normal, inside > 0 ? CrossingKind::Crossing : CrossingKind::Edge));
         }
     }
     out.finish();
@@ -186,7 +195,8 @@ ExactCrossings torusCrossings(const BVec& o, const BVec& d, double majorRadius, 
     // With G = d.d, H = o.d, K = o.o + R^2 - r^2 and a2, a1, a0 the terms of
     // (ox + t dx)^2 + (oy + t dy)^2: F = (G t^2 + 2 H t + K)^2 - 4 R^2 (a2 t^2 + 2 a1 t + a0).
     const Bounded G = dot(d, d), H = dot(o, d), K = dot(o, o) + offset;
-    const Bounded a2 = d.x * d.x + d.y * d.y, a1 = o.x * d.x + o.y * d.y, a0 = o.x * o.x + o.y * o.y;
+    const Bounded a2 = d.x * d.x + d.y * d.y, a1 = o.x * d.x + o.y * d.y,
+                  a0 = o.x * o.x + o.y * o.y;
     const Bounded four(4), eight(8), two(2);
     const Bounded c[5] = {K * K - four * R2 * a0, four * H * K - eight * R2 * a1,
                           four * H * H + two * G * K - four * R2 * a2, four * G * H, G * G};

@@ -41,29 +41,45 @@ struct Vec3 {
     T x = 0, y = 0, z = 0;
     T& operator[](int i) { return i == 0 ? x : i == 1 ? y : z; }
     const T& operator[](int i) const { return i == 0 ? x : i == 1 ? y : z; }
-    friend Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-    friend Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+    friend Vec3 operator+(const Vec3& a, const Vec3& b) {
+        return {a.x + b.x, a.y + b.y, a.z + b.z};
+    }
+    friend Vec3 operator-(const Vec3& a, const Vec3& b) {
+        return {a.x - b.x, a.y - b.y, a.z - b.z};
+    }
     friend Vec3 operator-(const Vec3& a) { return {-a.x, -a.y, -a.z}; }
     friend Vec3 operator*(const T& s, const Vec3& a) { return {s * a.x, s * a.y, s * a.z}; }
     friend Vec3 operator/(const Vec3& a, const T& s) { return {a.x / s, a.y / s, a.z / s}; }
 };
 
-template <typename T> T dot(const Vec3<T>& a, const Vec3<T>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-template <typename T> Vec3<T> cross(const Vec3<T>& a, const Vec3<T>& b) {
+template <typename T>
+T dot(const Vec3<T>& a, const Vec3<T>& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <typename T>
+Vec3<T> cross(const Vec3<T>& a, const Vec3<T>& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-template <typename T> T length(const Vec3<T>& a) {
+template <typename T>
+T length(const Vec3<T>& a) {
     using std::sqrt;
     return sqrt(dot(a, a));
 }
-template <typename T> Vec3<T> normalize(const Vec3<T>& a) { return a / length(a); }
+template <typename T>
+Vec3<T> normalize(const Vec3<T>& a) {
+    return a / length(a);
+}
 
 using QVec = Vec3<Quad>;
 using BVec = Vec3<Bounded>;
 
-inline QVec valueOf(const BVec& v) { return {v.x.v, v.y.v, v.z.v}; }
+inline QVec valueOf(const BVec& v) {
+    return {v.x.v, v.y.v, v.z.v};
+}
 // The largest error bound of the three coordinates.
-inline Quad errorOf(const BVec& v) { return std::max({v.x.e, v.y.e, v.z.e}); }
+inline Quad errorOf(const BVec& v) {
+    return std::max({v.x.e, v.y.e, v.z.e});
+}
 
 enum class CrossingKind { Crossing, Tangent, Edge };
 

@@ -1,8 +1,8 @@
 #include "numerics/oracle.h"
 
 #include "util/error.h"
-#include "util/parallel_for.h"
 #include "util/file_loc.h"
+#include "util/parallel_for.h"
 
 #include <algorithm>
 #include <atomic>
@@ -12,7 +12,9 @@ namespace vkray::numerics {
 
 namespace {
 
-BVec exactVec(const glm::dvec3& v) { return {Bounded(v.x), Bounded(v.y), Bounded(v.z)}; }
+BVec exactVec(const glm::dvec3& v) {
+    return {Bounded(v.x), Bounded(v.y), Bounded(v.z)};
+}
 
 // The generic ray of an object: A origin + b and A direction, A and b the
 // rows of the scene's double M^-1 (glm stores columns: m[column][row]).
@@ -30,7 +32,8 @@ BVec toWorldNormal(const SceneObject& object, const BVec& n) {
     const glm::dmat4& m = object.objectFromWorld;
     BVec w;
     for (int column = 0; column < 3; ++column)
-        w[column] = Bounded(m[column][0]) * n.x + Bounded(m[column][1]) * n.y + Bounded(m[column][2]) * n.z;
+        w[column] =
+            Bounded(m[column][0]) * n.x + Bounded(m[column][1]) * n.y + Bounded(m[column][2]) * n.z;
     return w;
 }
 
@@ -111,7 +114,9 @@ QVec perturbed(const QVec& d, const glm::dvec3& axis, double angle) {
     return normalize(d + Quad(angle) * QVec{Quad(axis.x), Quad(axis.y), Quad(axis.z)});
 }
 
-double norm(const glm::dvec3& v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
+double norm(const glm::dvec3& v) {
+    return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+}
 
 // alphaO, alphaD, |o|, |d| of oracle.h for an object and a world ray, in double.
 struct GenericSizes {
@@ -242,11 +247,13 @@ Meets meets(const SceneObject& object, const OracleRay& ray, const Quad& tMin, c
     return uncertain ? Meets::Uncertain : Meets::No;
 }
 
-OracleRay primaryRay(const CameraBasis& camera, const RenderSettings& settings, double px, double py) {
+OracleRay primaryRay(const CameraBasis& camera, const RenderSettings& settings, double px,
+                     double py) {
     const Bounded sx = Bounded(2.0) * Bounded(px) / Bounded(double(settings.width)) - Bounded(1.0);
     const Bounded sy = Bounded(1.0) - Bounded(2.0) * Bounded(py) / Bounded(double(settings.height));
     const Bounded tanHalf(camera.tanHalfFov);
-    const BVec d = -exactVec(camera.n) + (sx * tanHalf * Bounded(camera.aspect)) * exactVec(camera.u) +
+    const BVec d = -exactVec(camera.n) +
+                   (sx * tanHalf * Bounded(camera.aspect)) * exactVec(camera.u) +
                    (sy * tanHalf) * exactVec(camera.v);
     return {exactVec(camera.eye), d / length(d)};
 }
@@ -279,7 +286,8 @@ std::vector<OraclePixel> renderOracle(const Scene& scene, const CameraBasis& cam
             std::size_t(height),
             [&](std::size_t row) {
                 const int y = int(row);
-                for (int x = 0; x < width; ++x) work(x, y, pixels[size_t(y) * size_t(width) + size_t(x)]);
+                for (int x = 0; x < width; ++x)
+                    work(x, y, pixels[size_t(y) * size_t(width) + size_t(x)]);
             },
             threads);
     };
@@ -312,7 +320,8 @@ std::vector<OraclePixel> renderOracle(const Scene& scene, const CameraBasis& cam
         for (int a = 0; a < 3; ++a) {
             double angle = 0;
             for (int id : seen)
-                if (id >= 0) angle = std::max(angle, footprint(scene.objects[size_t(id)], camera.eye, w, a));
+                if (id >= 0)
+                    angle = std::max(angle, footprint(scene.objects[size_t(id)], camera.eye, w, a));
             for (const glm::dvec3& axis : {camera.u, -camera.u, camera.v, -camera.v}) {
                 const QVec turned = perturbed(p.direction, axis, angle);
                 const OracleRay ray{exactVec(camera.eye),

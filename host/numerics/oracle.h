@@ -50,9 +50,9 @@ OracleRay exactRay(const glm::dvec3& origin, const glm::dvec3& direction);
 
 struct OracleHit {
     Quad t = std::numeric_limits<Quad>::infinity();
-    Quad tBound = 0;  // |t - t exact| <= tBound
-    QVec normal;      // world, unit, facing the ray (as Frame normals do)
-    int id = -1;      // scene object index; -1: nothing
+    Quad tBound = 0;         // |t - t exact| <= tBound
+    QVec normal;             // world, unit, facing the ray (as Frame normals do)
+    int id = -1;             // scene object index; -1: nothing
     bool entering = false;   // the ray enters the object's solid there (against its outward normal)
     bool uncertain = false;  // the oracle cannot tell (a tangent, an edge, a tie)
     QVec genericNormal;      // unit, outward, in the object's generic space
@@ -86,7 +86,8 @@ Meets meets(const SceneObject& object, const OracleRay& ray, const Quad& tMin, c
 
 // The primary ray through image point (px, py) (pixels, y down), as both
 // renderers build it.
-OracleRay primaryRay(const CameraBasis& camera, const RenderSettings& settings, double px, double py);
+OracleRay primaryRay(const CameraBasis& camera, const RenderSettings& settings, double px,
+                     double py);
 
 // Throws Error at the object's place for what the oracle does not intersect
 // (meshes and booleans: the stress suite uses analytic shapes only).
@@ -124,7 +125,7 @@ struct Conditioning {
 
 struct OraclePixel {
     OracleHit hit;
-    RVec direction;            // the pixel's unit ray direction
+    RVec direction;             // the pixel's unit ray direction
     Conditioning conditioning;  // at the hit (zero on a miss)
     // By Arithmetic: the pixel is set aside: its footprint straddles an edge
     // (the ray turned by the footprint meets another object, or the oracle
@@ -145,6 +146,8 @@ std::vector<OraclePixel> renderOracle(const Scene& scene, const CameraBasis& cam
 // Angle between two directions, accurate at small angles: atan2(|a x b|, a.b).
 double angleBetween(const glm::dvec3& a, const glm::dvec3& b);
 
-inline glm::dvec3 toDvec3(const RVec& v) { return {double(v.x), double(v.y), double(v.z)}; }
+inline glm::dvec3 toDvec3(const RVec& v) {
+    return {double(v.x), double(v.y), double(v.z)};
+}
 
 }  // namespace vkray::numerics

@@ -14,7 +14,9 @@ using Coefficients = std::array<Bounded, kMaxDegree + 1>;
 // isolated to 2^-90 takes a few hundred.
 constexpr int kMaxIntervals = 20000;
 
-int signOf(const Bounded& x) { return x.positive() ? 1 : x.negative() ? -1 : 0; }
+int signOf(const Bounded& x) {
+    return x.positive() ? 1 : x.negative() ? -1 : 0;
+}
 
 Quad binomial(int n, int k) {
     Quad b = 1;
@@ -105,7 +107,8 @@ Root refined(const Bounded* c, int n, Quad lo, Quad hi, int loSign, const Quad& 
             // m is within f's noise of the root: the narrowest bracket about
             // it that f certifies (else [lo, hi] stays).
             for (Quad e = ldexp(abs(m) + span, -110); e < (hi - lo) / 2; e *= 16) {
-                if (m - e > lo && m + e < hi && signOf(f(m - e)) == loSign && signOf(f(m + e)) == -loSign) {
+                if (m - e > lo && m + e < hi && signOf(f(m - e)) == loSign &&
+                    signOf(f(m + e)) == -loSign) {
                     lo = m - e;
                     hi = m + e;
                     break;
@@ -194,7 +197,8 @@ std::vector<Root> polynomialRoots(const Bounded* c, int degree, const Quad& a, c
     // triple root), classified again from the signs at its ends.
     std::vector<Root> merged;
     for (const Root& r : roots) {
-        if (!merged.empty() && r.unresolvedPiece && merged.back().unresolvedPiece && r.lo <= merged.back().hi) {
+        if (!merged.empty() && r.unresolvedPiece && merged.back().unresolvedPiece &&
+            r.lo <= merged.back().hi) {
             Root& cluster = merged.back();
             cluster.hi = r.hi;
             const int atLo = signOf(f(cluster.lo)), atHi = signOf(f(cluster.hi));

@@ -20,7 +20,6 @@ namespace vkray::numerics {
 
 namespace {
 
-
 std::string sizeText(const RenderSettings& s) {
     return std::to_string(s.width) + "x" + std::to_string(s.height);
 }
@@ -54,13 +53,19 @@ void combine(const std::vector<Knob>& knobs, size_t k, ReportConfig config,
 
 std::vector<Knob> reportKnobs() {
     return {
-        {"precision", {"naive", "robust", "fp64"},
-         [](ReportConfig& c, const std::string& v) { c.precision = parsePrecision("precision", v); }},
-        {"spp", {"1", "4"},
+        {"precision",
+         {"naive", "robust", "fp64"},
+         [](ReportConfig& c, const std::string& v) {
+             c.precision = parsePrecision("precision", v);
+         }},
+        {"spp",
+         {"1", "4"},
          [](ReportConfig& c, const std::string& v) { c.settings.spp = std::stoi(v); }},
-        {"block", {"1", "2", "4"},
+        {"block",
+         {"1", "2", "4"},
          [](ReportConfig& c, const std::string& v) { c.settings.block = std::stoi(v); }},
-        {"size", {"full", "half"},
+        {"size",
+         {"full", "half"},
          [](ReportConfig& c, const std::string& v) {
              if (v == "half") {
                  c.settings.width = std::max(1, c.settings.width / 2);
@@ -122,9 +127,11 @@ std::vector<SweepPoint> runSweep(const Scene& scene, const Camera& camera, gpu::
     std::vector<SweepPoint> points;
     combine(reportKnobs(), 0, base, {}, points);
     if (options.precision)
-        std::erase_if(points, [&](const SweepPoint& p) { return p.config.precision != *options.precision; });
-    const int threads = options.threads > 0 ? options.threads
-                                            : int(std::max(1u, std::thread::hardware_concurrency()));
+        std::erase_if(
+            points, [&](const SweepPoint& p) { return p.config.precision != *options.precision; });
+    const int threads = options.threads > 0
+                            ? options.threads
+                            : int(std::max(1u, std::thread::hardware_concurrency()));
     // Under mpirun the work is handed out across the ranks (dist/job_hand_out.h)
     // in two rounds: the references, which every rank then holds, and the points.
     const dist::World& world = dist::World::current();
@@ -213,10 +220,13 @@ Report sweepReport(const std::string& scenePath, const std::vector<SweepPoint>& 
     report.title = "vkray report " + scenePath;
     report.paragraphs = {
         "Error against run time over precision mode, samples per pixel, block size and image "
-        "size, on " + device +
+        "size, on " +
+            device +
             ". Each GPU configuration is rendered three times and the fastest render counts. Its "
             "error is the colour difference (clamped to [0, 1]) from the CPU reference in double "
-            "at " + std::to_string(kReferenceSpp) + " samples per pixel, block 1 and the same "
+            "at " +
+            std::to_string(kReferenceSpp) +
+            " samples per pixel, block 1 and the same "
             "size: RMSE over all pixels and channels, and the largest difference.",
         "In the plots, lower left is better; the dashed line joins the configurations that no "
         "other beats in both time and error (the Pareto front); a label that would cover "
@@ -224,7 +234,8 @@ Report sweepReport(const std::string& scenePath, const std::vector<SweepPoint>& 
         "ids differing from the reference on more than 1 % of pixels (ids are those of each "
         "pixel's first sample, which sits elsewhere in the reference's finer grid of samples: "
         "a fraction of a percent of edge pixels differ in any configuration)."};
-    report.table.columns = {"configuration", "size", "time s", "RMSE", "max error", "ids differ %", "note"};
+    report.table.columns = {"configuration", "size",         "time s", "RMSE",
+                            "max error",     "ids differ %", "note"};
     std::map<std::string, std::pair<Plot, Plot>> plots;  // by size
     std::map<std::string, Gallery> galleries;            // by size
     for (const SweepPoint& p : points) {
@@ -261,7 +272,8 @@ Report sweepReport(const std::string& scenePath, const std::vector<SweepPoint>& 
         for (std::string v : label) {
             for (const char* knob : {"precision ", "spp ", "block "}) {
                 const std::string k = knob;
-                if (v.rfind(k, 0) == 0) v = (k == "block " ? "b" : k == "spp " ? "s" : "") + v.substr(k.size());
+                if (v.rfind(k, 0) == 0)
+                    v = (k == "block " ? "b" : k == "spp " ? "s" : "") + v.substr(k.size());
             }
             shortLabel += (shortLabel.empty() ? "" : " ") + v;
         }

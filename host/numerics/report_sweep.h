@@ -17,7 +17,9 @@
 #include <string>
 #include <vector>
 
-namespace vkray::gpu { class Context; }
+namespace vkray::gpu {
+class Context;
+}
 
 namespace vkray::numerics {
 
@@ -29,7 +31,8 @@ struct ReportConfig {
 
 // A knob: its values as written in labels, and how each sets a configuration.
 // Adding one is one line in reportKnobs(), e.g. samples per pixel:
-//   {"spp", {"1", "4", "16"}, [](ReportConfig& c, const std::string& v) { c.settings.spp = std::stoi(v); }},
+//   {"spp", {"1", "4", "16"}, [](ReportConfig& c, const std::string& v) { c.settings.spp =
+//   std::stoi(v); }},
 struct Knob {
     std::string name;
     std::vector<std::string> values;
@@ -47,8 +50,8 @@ struct SweepPoint {
     std::vector<std::string> values;  // one per knob, in reportKnobs() order
     ReportConfig config;
     bool ran = false;
-    std::string note;  // why it did not run
-    double seconds = 0;  // render time
+    std::string note;               // why it did not run
+    double seconds = 0;             // render time
     double rmse = 0, maxError = 0;  // colour, clamped to [0, 1], against the reference
     double idMismatchPercent = 0;
     // Thumbnails (PNG, at most kThumbnailWidth wide): the image, and its error
@@ -63,7 +66,7 @@ inline constexpr HeatScale kErrorScale{1e-4, 1};
 struct SweepOptions {
     int width = 640, height = 480;
     std::string shaderDirectory;
-    int threads = 0;  // CPU reference threads
+    int threads = 0;                     // CPU reference threads
     std::optional<Precision> precision;  // only this mode (default: every value of the knob)
 };
 

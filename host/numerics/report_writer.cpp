@@ -11,8 +11,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
-#include <ostream>
 #include <numeric>
+#include <ostream>
 #include <sstream>
 
 namespace vkray::numerics {
@@ -33,12 +33,15 @@ std::string shortText(const ReportValue& v) {
     case ReportValue::Text: return v.text;
     case ReportValue::Number:
         if (v.number == 0) return "0";
-        return printed(std::abs(v.number) >= 1e-3 && std::abs(v.number) < 1e5 ? "%.4g" : "%.2e", v.number);
+        return printed(std::abs(v.number) >= 1e-3 && std::abs(v.number) < 1e5 ? "%.4g" : "%.2e",
+                       v.number);
     }
     return "";
 }
 
-std::string fullNumber(double v) { return std::isfinite(v) ? printed("%.9g", v) : ""; }
+std::string fullNumber(double v) {
+    return std::isfinite(v) ? printed("%.9g", v) : "";
+}
 
 std::string csvField(const std::string& s) {
     if (s.find_first_of(",\"\n") == std::string::npos) return s;
@@ -110,7 +113,8 @@ std::string decadeLabel(int decade) {
     return "1e" + std::to_string(decade);
 }
 
-const char* kPalette[] = {"#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf", "#e377c2"};
+const char* kPalette[] = {"#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e",
+                          "#8c564b", "#17becf", "#e377c2"};
 
 // Words broken into lines of at most `width` characters (a longer word keeps its own line).
 std::vector<std::string> wrapped(const std::string& text, size_t width) {
@@ -207,15 +211,19 @@ std::string formatTable(const ReportTable& table) {
 
 std::string toCsv(const ReportTable& table) {
     std::ostringstream out;
-    for (size_t i = 0; i < table.columns.size(); ++i) out << (i ? "," : "") << csvField(table.columns[i]);
+    for (size_t i = 0; i < table.columns.size(); ++i)
+        out << (i ? "," : "") << csvField(table.columns[i]);
     out << "\n";
     for (const auto& row : table.rows) {
         for (size_t i = 0; i < row.size(); ++i) {
             const ReportValue& v = row[i];
             out << (i ? "," : "");
-            if (v.kind == ReportValue::Number) out << fullNumber(v.number);
-            else if (v.kind == ReportValue::Integer) out << v.integer;
-            else if (v.kind == ReportValue::Text) out << csvField(v.text);
+            if (v.kind == ReportValue::Number)
+                out << fullNumber(v.number);
+            else if (v.kind == ReportValue::Integer)
+                out << v.integer;
+            else if (v.kind == ReportValue::Text)
+                out << csvField(v.text);
         }
         out << "\n";
     }
@@ -231,7 +239,8 @@ std::string toJson(const Report& report) {
     json["columns"] = report.table.columns;
     json["rows"] = nlohmann::ordered_json::array();
     for (const std::vector<ReportValue>& row : report.table.rows) {
-        nlohmann::ordered_json& object = json["rows"].emplace_back(nlohmann::ordered_json::object());
+        nlohmann::ordered_json& object =
+            json["rows"].emplace_back(nlohmann::ordered_json::object());
         for (size_t i = 0; i < row.size(); ++i) object[report.table.columns[i]] = jsonValue(row[i]);
     }
     // Text that is not UTF-8 (a Latin-1 name from a scene file) is written
@@ -253,7 +262,8 @@ std::string toSvg(const Plot& plot) {
     const auto py = [&](double y) { return H - bottom - ay.at(y) * (H - top - bottom); };
     std::ostringstream s;
     s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
-      << "\" viewBox=\"0 0 " << W << " " << H << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
+      << "\" viewBox=\"0 0 " << W << " " << H
+      << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
     s << "<title>" << xml(plot.title) << "</title>\n";
     s << "<rect x=\"0\" y=\"0\" width=\"" << W << "\" height=\"" << H << "\" fill=\"white\"/>\n";
     s << "<text x=\"" << (left + W - right) / 2
@@ -273,8 +283,8 @@ std::string toSvg(const Plot& plot) {
     }
     s << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << W - left - right
       << "\" height=\"" << H - top - bottom << "\" fill=\"none\" stroke=\"#444\"/>\n";
-    s << "<text x=\"" << (left + W - right) / 2 << "\" y=\"" << H - 8 << "\" text-anchor=\"middle\">"
-      << xml(plot.xLabel) << "</text>\n";
+    s << "<text x=\"" << (left + W - right) / 2 << "\" y=\"" << H - 8
+      << "\" text-anchor=\"middle\">" << xml(plot.xLabel) << "</text>\n";
     s << "<text transform=\"translate(14 " << (top + H - bottom) / 2
       << ") rotate(-90)\" text-anchor=\"middle\">" << xml(plot.yLabel) << "</text>\n";
     // The Pareto front: by time, each point faster than all with less error.
@@ -314,7 +324,8 @@ std::string toSvg(const Plot& plot) {
         const double x = px(p.x), y = py(p.y);
         const bool leftSide = x > W - right - 90;
         const double width = 6.2 * double(p.label.size());
-        const Box box{leftSide ? x - 8 - width : x + 8, y - 17, leftSide ? x - 8 : x + 8 + width, y - 4};
+        const Box box{leftSide ? x - 8 - width : x + 8, y - 17, leftSide ? x - 8 : x + 8 + width,
+                      y - 4};
         if (std::any_of(placed.begin(), placed.end(), [&](const Box& b) {
                 return box.x0 < b.x1 && b.x0 < box.x1 && box.y0 < b.y1 && b.y0 < box.y1;
             }))

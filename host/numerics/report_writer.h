@@ -35,7 +35,7 @@ struct ReportTable {
 
 struct PlotPoint {
     std::string label;
-    double x = 0, y = 0;  // y <= 0 is drawn on a "0" line below the lowest decade
+    double x = 0, y = 0;   // y <= 0 is drawn on a "0" line below the lowest decade
     bool flagged = false;  // drawn hollow and red (e.g. a mode with hit/miss flips)
     std::string series;    // points of one series share a colour and a legend line
                            // (empty: the label is the series)

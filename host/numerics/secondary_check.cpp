@@ -1,8 +1,8 @@
 #include "numerics/secondary_check.h"
 
+#include "shaders/layout.h"
 #include "util/error.h"
 #include "util/parallel_for.h"
-#include "shaders/layout.h"
 
 #include <algorithm>
 #include <atomic>
@@ -13,8 +13,12 @@ namespace vkray::numerics {
 
 namespace {
 
-QVec toQuad(const glm::dvec3& v) { return {Quad(v.x), Quad(v.y), Quad(v.z)}; }
-BVec exact(const QVec& v) { return {Bounded(v.x), Bounded(v.y), Bounded(v.z)}; }
+QVec toQuad(const glm::dvec3& v) {
+    return {Quad(v.x), Quad(v.y), Quad(v.z)};
+}
+BVec exact(const QVec& v) {
+    return {Bounded(v.x), Bounded(v.y), Bounded(v.z)};
+}
 
 // Crossings nearer the feeler's origin than this share of the primary t are
 // the origin's own surface, or one coincident with it within the scene's own
@@ -29,11 +33,13 @@ struct FeelerTruth {
     Meets metLeft = Meets::No, metOther = Meets::No;
     Meets met() const {
         if (metLeft == Meets::Yes || metOther == Meets::Yes) return Meets::Yes;
-        return metLeft == Meets::Uncertain || metOther == Meets::Uncertain ? Meets::Uncertain : Meets::No;
+        return metLeft == Meets::Uncertain || metOther == Meets::Uncertain ? Meets::Uncertain
+                                                                           : Meets::No;
     }
 };
 
-FeelerTruth exactFeeler(const Scene& scene, int left, const BVec& from, const QVec& light, const Quad& tiny) {
+FeelerTruth exactFeeler(const Scene& scene, int left, const BVec& from, const QVec& light,
+                        const Quad& tiny) {
     const QVec toLight = light - valueOf(from);
     const Quad distance = length(toLight);
     const OracleRay ray{from, exact(toLight / distance)};
@@ -57,9 +63,9 @@ QVec refract(const QVec& d, const QVec& n, const Quad& eta) {
 
 OriginFootprint originFootprintOf(Precision precision) {
     switch (precision) {
-    case Precision::Naive: return {0, 2 * 1e-4};  // NAIVE_EPSILON
-    case Precision::Robust: return {2 * 0x1p-18, 0};   // OFFSET_SCALE, OFFSET_GENERIC_SCALE
-    case Precision::Fp64: return {2 * 0x1p-47, 0};     // OFFSET_DOUBLE_*
+    case Precision::Naive: return {0, 2 * 1e-4};      // NAIVE_EPSILON
+    case Precision::Robust: return {2 * 0x1p-18, 0};  // OFFSET_SCALE, OFFSET_GENERIC_SCALE
+    case Precision::Fp64: return {2 * 0x1p-47, 0};    // OFFSET_DOUBLE_*
     }
     return {};
 }
@@ -91,13 +97,17 @@ SecondaryStats checkSecondaryRays(const Scene& scene, const CameraBasis& camera,
                 const Quad tiny = kOwnSurface * o.hit.t;
                 // The mode's origin footprint at this point, along the normal.
                 const QVec fromEye = o.hit.t * o.direction;
-                const double largest = double(std::max({abs(fromEye.x), abs(fromEye.y), abs(fromEye.z)}));
-                const double scale = genericScaleAlong(scene.objects[size_t(o.hit.id)], o.hit.genericNormal);
-                const Quad reach = Quad(footprint.relative * std::max(largest, scale) + footprint.absolute);
+                const double largest =
+                    double(std::max({abs(fromEye.x), abs(fromEye.y), abs(fromEye.z)}));
+                const double scale =
+                    genericScaleAlong(scene.objects[size_t(o.hit.id)], o.hit.genericNormal);
+                const Quad reach =
+                    Quad(footprint.relative * std::max(largest, scale) + footprint.absolute);
                 bool traced = false, selfHit = false, flip = false, edge = false;
                 for (int l = 0; l < lights; ++l) {
                     const QVec light = toQuad(scene.lights[size_t(l)].position);
-                    if (!s.feelerTraced(l) || !(dot(o.hit.normal, light - valueOf(point)) > 0)) continue;
+                    if (!s.feelerTraced(l) || !(dot(o.hit.normal, light - valueOf(point)) > 0))
+                        continue;
                     traced = true;
                     const FeelerTruth truth = exactFeeler(scene, o.hit.id, point, light, tiny);
                     if (truth.met() == Meets::Uncertain) {  // the oracle cannot tell: not compared
@@ -106,15 +116,18 @@ SecondaryStats checkSecondaryRays(const Scene& scene, const CameraBasis& camera,
                     }
                     // Acne: met the surface it left, which the exact feeler certainly never meets.
                     if (s.feelerMetLeft(l) && truth.metLeft == Meets::No) selfHit = true;
-                    if (s.feelerMetLeft(l) || s.feelerMet(l) == (truth.met() == Meets::Yes)) continue;
+                    if (s.feelerMetLeft(l) || s.feelerMet(l) == (truth.met() == Meets::Yes))
+                        continue;
                     // A verdict the other objects decide differently from the mode's own
                     // hit point, or from the exact one moved by the origin footprint, lies
                     // on a shadow's edge (the object left is acne's to judge).
-                    bool onEdge = exactFeeler(scene, o.hit.id, modePoint, light, tiny).metOther != truth.metOther;
+                    bool onEdge = exactFeeler(scene, o.hit.id, modePoint, light, tiny).metOther !=
+                                  truth.metOther;
                     for (const Quad& side : {Quad(1), Quad(-1)}) {
                         if (onEdge) break;
                         const BVec moved = point + Bounded(side * reach) * exact(o.hit.normal);
-                        onEdge = exactFeeler(scene, o.hit.id, moved, light, tiny).metOther != truth.metOther;
+                        onEdge = exactFeeler(scene, o.hit.id, moved, light, tiny).metOther !=
+                                 truth.metOther;
                     }
                     (onEdge ? edge : flip) = true;
                 }
@@ -129,7 +142,8 @@ SecondaryStats checkSecondaryRays(const Scene& scene, const CameraBasis& camera,
                 const QVec inward = normalize(
                     refract(o.direction, o.hit.normal, Quad(object.material.speedOfLight)));
                 const OracleHit exit = closestHit(scene, {point, exact(inward)}, tiny);
-                if (exit.id < 0 || exit.uncertain) continue;  // no way through, or the oracle cannot tell
+                if (exit.id < 0 || exit.uncertain)
+                    continue;  // no way through, or the oracle cannot tell
                 ++refracted;
                 const QVec exitPoint = o.hit.t * o.direction + exit.t * inward;  // from the eye
                 const QVec modeExit = toQuad(s.refractedPoint);

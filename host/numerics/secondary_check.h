@@ -24,9 +24,9 @@
 // set-aside (oracle.h), and only lights on the lit side for both are compared.
 #pragma once
 
+#include "gpu/precision.h"
 #include "image/stress_sample.h"
 #include "numerics/oracle.h"
-#include "gpu/precision.h"
 #include "render/camera.h"
 #include "scene/scene.h"
 

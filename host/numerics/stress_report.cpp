@@ -4,13 +4,15 @@
 
 namespace vkray::numerics {
 
-std::vector<std::string> notRunSummary(const std::vector<ModeMetrics>& rows, std::size_t caseCount) {
+std::vector<std::string> notRunSummary(const std::vector<ModeMetrics>& rows,
+                                       std::size_t caseCount) {
     // Each mode that did not run, with its reasons, in the rows' order.
     std::vector<std::pair<std::string, std::vector<std::string>>> modes;
     std::vector<std::size_t> counts;
     for (const ModeMetrics& m : rows) {
         if (m.ran) continue;
-        auto it = std::find_if(modes.begin(), modes.end(), [&](const auto& e) { return e.first == m.mode; });
+        auto it = std::find_if(modes.begin(), modes.end(),
+                               [&](const auto& e) { return e.first == m.mode; });
         if (it == modes.end()) {
             modes.push_back({m.mode, {}});
             counts.push_back(0);
@@ -38,9 +40,10 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
     report.title = "vkray stress";
     report.paragraphs = {
         "`" + command + "` on " + device + ". " + std::to_string(cases.size()) +
-            (cases.size() == 1 ? " stress case" : " stress cases") + " in each precision "
-        "mode (naive, robust, fp64 on the GPU; the double CPU reference) against a float128 "
-        "oracle with certified error bounds, pixel by pixel.",
+            (cases.size() == 1 ? " stress case" : " stress cases") +
+            " in each precision "
+            "mode (naive, robust, fp64 on the GPU; the double CPU reference) against a float128 "
+            "oracle with certified error bounds, pixel by pixel.",
         "set aside: pixels whose footprint (8 times the angle the mode's rounding can turn its "
         "ray by) straddles an edge, of those beside an id change; left out of the other "
         "columns. flips: hit against miss. wrong id: both hit, different objects. compared: "
@@ -55,7 +58,8 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
         "output): acne: pixels whose shadow feelers met the object they left where the exact "
         "feeler from the exact point does not; of: pixels with a feeler compared; shadow "
         "flips: feelers whose verdict differs from the exact one, shadow edges: those the "
-        "primary hit's own error or the secondary rays' offset explains (set aside); exit errors: refracted rays that met "
+        "primary hit's own error or the secondary rays' offset explains (set aside); exit errors: "
+        "refracted rays that met "
         "their entry surface again or left off the exact exit point, of refracted. The double "
         "CPU reference's secondary rays are not recorded. oracle bound: the largest certified "
         "bound of the oracle's own t, relative. time: the fastest of three GPU renders, or the "
@@ -66,13 +70,33 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
         "Plots: one per case, a point per mode, x the render time and y the largest relative t "
         "error (0 is drawn below the lowest decade). Lower left is better; the dashed line is the "
         "Pareto front. Hollow red points are modes with flips, wrong ids or acne."};
-    report.table.columns = {"case",           "mode",           "time s",        "set aside",
-                            "beside edges",   "flips",          "wrong id",      "compared",
-                            "t err max",      "t err rms",      "t cond max",    "t world max",
-                            "t err / allowance", "normal err max", "normal err rms",
-                            "normal cond max", "normal world max", "normal err / allowance",
-                            "acne", "of", "shadow flips", "shadow edges", "exit errors",
-                            "refracted",      "oracle bound",  "verdict", "naive built to fail",
+    report.table.columns = {"case",
+                            "mode",
+                            "time s",
+                            "set aside",
+                            "beside edges",
+                            "flips",
+                            "wrong id",
+                            "compared",
+                            "t err max",
+                            "t err rms",
+                            "t cond max",
+                            "t world max",
+                            "t err / allowance",
+                            "normal err max",
+                            "normal err rms",
+                            "normal cond max",
+                            "normal world max",
+                            "normal err / allowance",
+                            "acne",
+                            "of",
+                            "shadow flips",
+                            "shadow edges",
+                            "exit errors",
+                            "refracted",
+                            "oracle bound",
+                            "verdict",
+                            "naive built to fail",
                             "note"};
     using V = ReportValue;
     for (const ModeMetrics& m : rows) {
@@ -80,21 +104,42 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
                                     [&](const StressCase& sc) { return sc.name == m.caseName; });
         const bool naiveFails = c != cases.end() && c->naiveFails;
         const bool feelers = m.ran && m.mode != kCpuDoubleMode;
-        const bool compared = m.ran && m.compared > 0;  // errors exist only where both hit one object
-        const auto count = [&](bool shown, std::size_t n) { return shown ? V::whole((long long)n) : V{}; };
+        const bool compared =
+            m.ran && m.compared > 0;  // errors exist only where both hit one object
+        const auto count = [&](bool shown, std::size_t n) {
+            return shown ? V::whole((long long)n) : V{};
+        };
         const auto number = [&](double x) { return compared ? V::num(x) : V{}; };
-        report.table.rows.push_back({
-            V::str(m.caseName), V::str(m.mode), m.ran ? V::num(m.seconds) : V{},
-            count(m.ran, m.setAside), count(m.ran, m.besideEdges), count(m.ran, m.flips),
-            count(m.ran, m.wrongId), count(m.ran, m.compared), number(m.tErrMax), number(m.tErrRms),
-            number(m.tConditionMax), number(m.tWorldMax), number(m.tRatioMax), number(m.normalErrMax),
-            number(m.normalErrRms), number(m.normalConditionMax), number(m.normalWorldMax),
-            number(m.normalRatioMax),
-            count(feelers, m.acne), count(feelers, m.feelers), count(feelers, m.shadowFlips),
-            count(feelers, m.shadowEdges), count(feelers, m.exitErrors), count(feelers, m.refracted),
-            number(m.oracleBound),
-            V::str(!m.ran ? "not run" : withinBounds(m) ? "pass" : "FAIL"), V::str(naiveFails ? "yes" : "no"),
-            V::str(m.note)});
+        report.table.rows.push_back({V::str(m.caseName),
+                                     V::str(m.mode),
+                                     m.ran ? V::num(m.seconds) : V{},
+                                     count(m.ran, m.setAside),
+                                     count(m.ran, m.besideEdges),
+                                     count(m.ran, m.flips),
+                                     count(m.ran, m.wrongId),
+                                     count(m.ran, m.compared),
+                                     number(m.tErrMax),
+                                     number(m.tErrRms),
+                                     number(m.tConditionMax),
+                                     number(m.tWorldMax),
+                                     number(m.tRatioMax),
+                                     number(m.normalErrMax),
+                                     number(m.normalErrRms),
+                                     number(m.normalConditionMax),
+                                     number(m.normalWorldMax),
+                                     number(m.normalRatioMax),
+                                     count(feelers, m.acne),
+                                     count(feelers, m.feelers),
+                                     count(feelers, m.shadowFlips),
+                                     count(feelers, m.shadowEdges),
+                                     count(feelers, m.exitErrors),
+                                     count(feelers, m.refracted),
+                                     number(m.oracleBound),
+                                     V::str(!m.ran            ? "not run"
+                                            : withinBounds(m) ? "pass"
+                                                              : "FAIL"),
+                                     V::str(naiveFails ? "yes" : "no"),
+                                     V::str(m.note)});
     }
     for (const std::string& line : notRunSummary(rows, cases.size()))
         report.paragraphs.push_back(line);
@@ -109,8 +154,9 @@ Report stressReport(const std::vector<ModeMetrics>& rows, const std::vector<Stre
         plot.flaggedMeaning = "flips, wrong ids or acne";
         for (const ModeMetrics& m : rows) {
             if (m.caseName != c.name || !m.ran) continue;
-            plot.points.push_back({m.mode, m.seconds, m.tErrMax,
-                                   m.flips + m.wrongId + m.acne + m.shadowFlips + m.exitErrors > 0});
+            plot.points.push_back(
+                {m.mode, m.seconds, m.tErrMax,
+                 m.flips + m.wrongId + m.acne + m.shadowFlips + m.exitErrors > 0});
         }
         report.plots.push_back(plot);
     }

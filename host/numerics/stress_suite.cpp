@@ -6,9 +6,9 @@
 #include "numerics/secondary_check.h"
 #include "numerics/stress_pictures.h"
 #include "reference/scene_intersector.h"
+#include "scene/scene_geometry.h"
 #include "util/error.h"
 #include "util/parallel_for.h"
-#include "scene/scene_geometry.h"
 
 #include <glm/geometric.hpp>
 
@@ -54,9 +54,9 @@ std::vector<StressSample> referenceSamples(const Scene& scene, const CameraBasis
             for (int x = 0; x < settings.width; ++x) {
                 const double sx = 2 * (x + 0.5) / settings.width - 1;
                 const double sy = 1 - 2 * (y + 0.5) / settings.height;
-                const glm::dvec3 d = glm::normalize(-camera.n +
-                                                    sx * camera.tanHalfFov * camera.aspect * camera.u +
-                                                    sy * camera.tanHalfFov * camera.v);
+                const glm::dvec3 d =
+                    glm::normalize(-camera.n + sx * camera.tanHalfFov * camera.aspect * camera.u +
+                                   sy * camera.tanHalfFov * camera.v);
                 const auto hit = intersector.closestHit({camera.eye, d}, 0.0);
                 StressSample& s = samples[size_t(y) * size_t(settings.width) + size_t(x)];
                 s.inDouble = true;
@@ -87,9 +87,12 @@ StressCase readStressCase(const std::string& path) {
         const size_t colon = body.find(':');
         const std::string key = colon == std::string::npos ? "" : body.substr(0, colon);
         const std::string value = colon == std::string::npos ? "" : trimmed(body.substr(colon + 1));
-        if (key == "stress") current = &c.title;
-        else if (key == "stiff") current = &c.stiff;
-        else if (key == "correct") current = &c.correct;
+        if (key == "stress")
+            current = &c.title;
+        else if (key == "stiff")
+            current = &c.stiff;
+        else if (key == "correct")
+            current = &c.correct;
         else if (key == "naive") {
             current = nullptr;
             if (value != "fails" && value != "passes")
@@ -107,7 +110,8 @@ StressCase readStressCase(const std::string& path) {
         *current = value;
     }
     if (c.title.empty() || c.stiff.empty() || c.correct.empty())
-        throw Error(path + ": a stress case starts with '! stress:', '! stiff:' and '! correct:' "
+        throw Error(path +
+                    ": a stress case starts with '! stress:', '! stiff:' and '! correct:' "
                     "comment lines (see scenes/stress/README.md)");
     return c;
 }
@@ -119,15 +123,16 @@ std::vector<StressCase> findStressCases(const std::string& directory, const std:
     for (const auto& entry : fs::directory_iterator(directory)) {
         const fs::path p = entry.path();
         if (p.extension() != ".sdl") continue;
-        if (!pattern.empty() && pattern != "*" && p.stem().string().find(pattern) == std::string::npos)
+        if (!pattern.empty() && pattern != "*" &&
+            p.stem().string().find(pattern) == std::string::npos)
             continue;
         paths.push_back(p.string());
     }
     std::sort(paths.begin(), paths.end());
     if (paths.empty())
-        throw Error("stress cases: no scene in '" + directory + "'" +
-                    (pattern.empty() || pattern == "*" ? std::string()
-                                                       : " matches '" + pattern + "'"));
+        throw Error(
+            "stress cases: no scene in '" + directory + "'" +
+            (pattern.empty() || pattern == "*" ? std::string() : " matches '" + pattern + "'"));
     std::vector<StressCase> cases;
     for (const std::string& path : paths) cases.push_back(readStressCase(path));
     return cases;
@@ -186,7 +191,8 @@ ModeMetrics compareWithOracle(const std::vector<OraclePixel>& oracle,
         m.normalConditionMax = std::max(m.normalConditionMax, c.normal);
         m.normalWorldMax = std::max(m.normalWorldMax, c.normalWorld);
         m.tRatioMax = std::max(m.tRatioMax, ratio(tErr, u * c.t + uWorld * c.tWorld));
-        m.normalRatioMax = std::max(m.normalRatioMax, ratio(nErr, u * c.normal + uWorld * c.normalWorld));
+        m.normalRatioMax =
+            std::max(m.normalRatioMax, ratio(nErr, u * c.normal + uWorld * c.normalWorld));
         m.oracleBound = std::max(m.oracleBound, double(o.hit.tBound / o.hit.t));
         tSquares += tErr * tErr;
         nSquares += nErr * nErr;
@@ -205,8 +211,9 @@ template <typename Row, typename Visit>
 void forEachField(Row& m, Visit&& visit) {
     for (auto* text : {&m.caseName, &m.mode, &m.note}) visit(*text);
     visit(m.ran);
-    for (auto* count : {&m.pixels, &m.setAside, &m.besideEdges, &m.compared, &m.flips, &m.wrongId,
-                        &m.feelers, &m.acne, &m.shadowFlips, &m.shadowEdges, &m.refracted, &m.exitErrors})
+    for (auto* count :
+         {&m.pixels, &m.setAside, &m.besideEdges, &m.compared, &m.flips, &m.wrongId, &m.feelers,
+          &m.acne, &m.shadowFlips, &m.shadowEdges, &m.refracted, &m.exitErrors})
         visit(*count);
     for (auto* value : {&m.seconds, &m.tErrMax, &m.tErrRms, &m.tConditionMax, &m.tWorldMax,
                         &m.tRatioMax, &m.normalErrMax, &m.normalErrRms, &m.normalConditionMax,
@@ -244,8 +251,7 @@ std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Contex
 
     const auto oracleStart = Clock::now();
     const std::vector<OraclePixel> oracle = renderOracle(scene, camera, settings, options.threads);
-    if (log)
-        *log << stressCase.name << ": oracle " << secondsSince(oracleStart) << " s\n";
+    if (log) *log << stressCase.name << ": oracle " << secondsSince(oracleStart) << " s\n";
     if (picture) {
         picture->caseName = stressCase.name;
         picture->oraclePng = oraclePng(scene, oracle, settings.width, settings.height);
@@ -267,7 +273,8 @@ std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Contex
             finish(m, precisionName(precision), 0);
             continue;
         }
-        gpu::GpuTracer tracer(*context, {.shaderDirectory = options.shaderDirectory, .precision = precision});
+        gpu::GpuTracer tracer(*context,
+                              {.shaderDirectory = options.shaderDirectory, .precision = precision});
         // The time: the fastest of three plain renders (the first also warms
         // caches); the numbers: the stress-output variant's, the same rays.
         double best = std::numeric_limits<double>::infinity();
@@ -280,9 +287,8 @@ std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Contex
         const Frame frame = tracer.renderStressOutput(scene, camera, settings, samples);
         const Arithmetic a = arithmeticOf(precisionName(precision));
         m = compareWithOracle(oracle, samples, a);
-        const SecondaryStats secondary =
-            checkSecondaryRays(scene, camera, oracle, samples, a, originFootprintOf(precision),
-                               options.threads);
+        const SecondaryStats secondary = checkSecondaryRays(
+            scene, camera, oracle, samples, a, originFootprintOf(precision), options.threads);
         m.feelers = secondary.feelerPixels;
         m.acne = secondary.acne;
         m.shadowFlips = secondary.shadowFlips;
@@ -290,15 +296,17 @@ std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Contex
         m.refracted = secondary.refracted;
         m.exitErrors = secondary.exitErrors;
         if (picture)
-            picture->modes.push_back(markedPicture(precisionName(precision), frame, oracle, samples, a,
-                                                   secondary.failedPixels));
+            picture->modes.push_back(markedPicture(precisionName(precision), frame, oracle, samples,
+                                                   a, secondary.failedPixels));
         finish(m, precisionName(precision), best);
     }
     if (options.cpuDouble) {
         const auto start = Clock::now();
-        const std::vector<StressSample> samples = referenceSamples(scene, camera, settings, options.threads);
+        const std::vector<StressSample> samples =
+            referenceSamples(scene, camera, settings, options.threads);
         const double seconds = secondsSince(start);
-        finish(compareWithOracle(oracle, samples, arithmeticOf(kCpuDoubleMode)), kCpuDoubleMode, seconds);
+        finish(compareWithOracle(oracle, samples, arithmeticOf(kCpuDoubleMode)), kCpuDoubleMode,
+               seconds);
     }
     return rows;
 }

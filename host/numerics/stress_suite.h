@@ -21,9 +21,9 @@
 //   oracle bound the largest certified bound of the oracle's t, relative
 #pragma once
 
+#include "gpu/precision.h"
 #include "image/stress_sample.h"
 #include "numerics/oracle.h"
-#include "gpu/precision.h"
 #include "render/camera.h"
 #include "scene/scene.h"
 
@@ -32,7 +32,9 @@
 #include <string>
 #include <vector>
 
-namespace vkray::gpu { class Context; }
+namespace vkray::gpu {
+class Context;
+}
 
 namespace vkray::numerics {
 
@@ -61,7 +63,7 @@ struct ModeMetrics {
     std::string caseName;
     std::string mode;  // naive, robust, fp64, double
     bool ran = false;
-    std::string note;  // why it did not run
+    std::string note;    // why it did not run
     double seconds = 0;  // render time (GPU dispatches; CPU tracing)
     std::size_t pixels = 0, setAside = 0, besideEdges = 0, compared = 0;
     std::size_t flips = 0, wrongId = 0;

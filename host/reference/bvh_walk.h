@@ -28,16 +28,14 @@ void walkBvh(const Bvh& bvh, const Ray& ray, double tMin, TMax tMax, Leaf leaf) 
     std::array<Entry, kMaxBvhDepth + 2> stack;
     std::size_t size = 0;
     double rootEntry;
-    if (!intersectAabb(bvh.nodes[0].bounds, ray.origin, inverse, tMin, tMax(), &rootEntry))
-        return;
+    if (!intersectAabb(bvh.nodes[0].bounds, ray.origin, inverse, tMin, tMax(), &rootEntry)) return;
     stack[size++] = {0, rootEntry};
     while (size > 0) {
         const Entry entry = stack[--size];
         if (entry.tEntry > tMax()) continue;  // a nearer hit was found since it was pushed
         const BvhNode& node = bvh.nodes[entry.node];
         if (node.leaf()) {
-            for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
-                leaf(bvh.order[k]);
+            for (std::uint32_t k = node.first; k < node.first + node.count; ++k) leaf(bvh.order[k]);
             continue;
         }
         if (size + 2 > stack.size())  // only a BVH deeper than its contract allows
@@ -46,8 +44,8 @@ void walkBvh(const Bvh& bvh, const Ray& ray, double tMin, TMax tMax, Leaf leaf) 
         double entries[2] = {0, 0};
         bool met[2];
         for (int i = 0; i < 2; ++i)
-            met[i] = intersectAabb(bvh.nodes[children[i]].bounds, ray.origin, inverse, tMin,
-                                   tMax(), &entries[i]);
+            met[i] = intersectAabb(bvh.nodes[children[i]].bounds, ray.origin, inverse, tMin, tMax(),
+                                   &entries[i]);
         // Push the farther first, so that the nearer is popped next.
         const int nearer = met[0] && met[1] ? (entries[1] < entries[0] ? 1 : 0) : (met[0] ? 0 : 1);
         const int farther = 1 - nearer;

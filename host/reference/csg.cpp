@@ -18,9 +18,8 @@ namespace {
 SpanEnd worldEnd(const SceneObject& object, const GenericHit& end) {
     if (std::isinf(end.t)) return {end.t, glm::dvec3(0), glm::dvec3(0), nullptr};
     const glm::dvec3 normal = toWorldNormal(object, end.normal);
-    const glm::dvec3 geometric = end.geometricNormal == glm::dvec3(0)
-                                     ? normal
-                                     : toWorldNormal(object, end.geometricNormal);
+    const glm::dvec3 geometric =
+        end.geometricNormal == glm::dvec3(0) ? normal : toWorldNormal(object, end.geometricNormal);
     return {end.t, normal, geometric, &object};
 }
 
@@ -36,8 +35,8 @@ SpanList worldSpans(const SceneObject& object, const GenericSpans& spans) {
 Error noInside(const Scene& scene, const SceneObject& operand, const SceneObject* boolean) {
     std::string message = std::string("'") + shapeKeyword(operand.type) + "' has no inside";
     if (boolean)
-        message += std::string(" and cannot be an operand of '") + shapeKeyword(boolean->type) +
-                   "'";
+        message +=
+            std::string(" and cannot be an operand of '") + shapeKeyword(boolean->type) + "'";
     if (operand.type == ShapeType::Mesh || operand.type == ShapeType::Extrude)
         message += " (" + meshOf(scene, operand).name + " is not a closed surface)";
     return Error(formatDiagnostic(operand.loc, nullptr, "error", message));
@@ -91,9 +90,9 @@ bool hasInside(const Scene& scene, const SceneObject& object) {
 void requireCsgOperands(const Scene& scene, const SceneObject& object) {
     if (!isBoolean(object.type)) return;
     if (object.operands.size() != 2)
-        throw Error(formatDiagnostic(object.loc, nullptr, "error",
-                                     std::string("'") + shapeKeyword(object.type) +
-                                         "' needs exactly two operands"));
+        throw Error(formatDiagnostic(
+            object.loc, nullptr, "error",
+            std::string("'") + shapeKeyword(object.type) + "' needs exactly two operands"));
     for (const SceneObject& operand : object.operands) {
         if (!hasInside(scene, operand)) throw noInside(scene, operand, &object);
         requireCsgOperands(scene, operand);
@@ -130,8 +129,8 @@ SpanList objectSpans(const Scene& scene, const SceneObject& object, const Ray& w
 SpanList combineSpans(ShapeType operation, const SpanList& a, const SpanList& b) {
     struct Event {
         double t;
-        int operand;       // 0: a, 1: b
-        bool enter;        // an enter end of a span of positive length
+        int operand;  // 0: a, 1: b
+        bool enter;   // an enter end of a span of positive length
         const SpanEnd* end;
     };
     std::vector<Event> events;
@@ -181,8 +180,8 @@ SpanList combineSpans(ShapeType operation, const SpanList& a, const SpanList& b)
     return withoutSlivers(result);
 }
 
-std::optional<WorldHit> intersectBoolean(const Scene& scene, const SceneObject& object,
-                                         int index, const Ray& worldRay, double tMin) {
+std::optional<WorldHit> intersectBoolean(const Scene& scene, const SceneObject& object, int index,
+                                         const Ray& worldRay, double tMin) {
     const SpanList spans = objectSpans(scene, object, worldRay);
     for (const Span& span : spans) {
         for (const SpanEnd* end : {&span.enter, &span.exit}) {

@@ -53,8 +53,8 @@ SpanList objectSpans(const Scene& scene, const SceneObject& object, const Ray& w
 SpanList combineSpans(ShapeType operation, const SpanList& a, const SpanList& b);
 
 // The boolean's nearest hit with t > tMin: the first finite span end after tMin.
-std::optional<WorldHit> intersectBoolean(const Scene& scene, const SceneObject& object,
-                                         int index, const Ray& worldRay, double tMin);
+std::optional<WorldHit> intersectBoolean(const Scene& scene, const SceneObject& object, int index,
+                                         const Ray& worldRay, double tMin);
 
 // The most spans any ray can produce for this object, so that a renderer with
 // fixed interval storage (the GPU) can refuse a scene that needs more. Rules:

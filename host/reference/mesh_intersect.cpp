@@ -114,10 +114,9 @@ bool better(const MeshHit& hit, const std::optional<MeshHit>& best) {
 std::optional<MeshHit> testTriangle(const TriangleMesh& mesh, const WatertightRay& ray,
                                     std::uint32_t index, double tMin, double tMax) {
     const TriangleMesh::Triangle& triangle = mesh.triangles[index];
-    const std::optional<TriangleHit> hit =
-        intersectTriangle(ray, mesh.positions[triangle.position[0]],
-                          mesh.positions[triangle.position[1]],
-                          mesh.positions[triangle.position[2]], tMin, tMax);
+    const std::optional<TriangleHit> hit = intersectTriangle(
+        ray, mesh.positions[triangle.position[0]], mesh.positions[triangle.position[1]],
+        mesh.positions[triangle.position[2]], tMin, tMax);
     if (!hit) return std::nullopt;
     return MeshHit{hit->t, index, *hit};
 }
@@ -153,10 +152,12 @@ std::vector<MeshHit> meshCrossings(const TriangleMesh& mesh, const Ray& ray) {
     std::vector<MeshHit> crossings;
     const WatertightRay prepared(ray);
     if (!prepared.valid) return crossings;
-    walkBvh(mesh.bvh, ray, -kFar, [] { return kFar; }, [&](std::uint32_t index) {
-        const std::optional<MeshHit> hit = testTriangle(mesh, prepared, index, -kInf, kInf);
-        if (hit) crossings.push_back(*hit);
-    });
+    walkBvh(
+        mesh.bvh, ray, -kFar, [] { return kFar; },
+        [&](std::uint32_t index) {
+            const std::optional<MeshHit> hit = testTriangle(mesh, prepared, index, -kInf, kInf);
+            if (hit) crossings.push_back(*hit);
+        });
     std::sort(crossings.begin(), crossings.end(), [](const MeshHit& a, const MeshHit& b) {
         return a.t < b.t || (a.t == b.t && a.triangle < b.triangle);
     });

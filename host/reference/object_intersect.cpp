@@ -63,8 +63,7 @@ const TriangleMesh& meshOf(const Scene& scene, const SceneObject& object) {
 namespace {
 
 // The generic shape of a primitive (not a boolean, not a mesh).
-std::optional<GenericHit> intersectGeneric(const SceneObject& object, const Ray& ray,
-                                           double tMin) {
+std::optional<GenericHit> intersectGeneric(const SceneObject& object, const Ray& ray, double tMin) {
     switch (object.type) {
     case ShapeType::Sphere: return intersectSphere(ray, tMin);
     case ShapeType::Plane: return intersectPlane(ray, tMin);
@@ -72,15 +71,14 @@ std::optional<GenericHit> intersectGeneric(const SceneObject& object, const Ray&
     case ShapeType::Cube: return intersectCube(ray, tMin);
     case ShapeType::Cylinder:
     case ShapeType::Cone:
-    case ShapeType::TaperedCylinder:
-        return intersectTaperedCylinder(ray, taperOf(object), tMin);
+    case ShapeType::TaperedCylinder: return intersectTaperedCylinder(ray, taperOf(object), tMin);
     case ShapeType::Torus: return intersectTorus(ray, tMin);
     default: break;
     }
     // Every ShapeType is handled by intersectObject; reaching here is a bug.
-    throw Error(formatDiagnostic(object.loc, nullptr, "error",
-                                 std::string("internal: no generic intersector for '") +
-                                     shapeKeyword(object.type) + "'"));
+    throw Error(formatDiagnostic(
+        object.loc, nullptr, "error",
+        std::string("internal: no generic intersector for '") + shapeKeyword(object.type) + "'"));
 }
 
 }  // namespace

@@ -46,8 +46,7 @@ double bracketedRoot(std::span<const double> c, double a, double b, bool negativ
         if (!(next > a && next < b)) next = 0.5 * (a + b);  // also catches dp == 0 (NaN, inf)
         const double step = std::abs(next - x);
         x = next;
-        if (step <= 4 * std::numeric_limits<double>::epsilon() * std::abs(x) ||
-            !(a < x && x < b))
+        if (step <= 4 * std::numeric_limits<double>::epsilon() * std::abs(x) || !(a < x && x < b))
             break;
     }
     return x;

@@ -75,8 +75,8 @@ void renderBlockRow(const WhittedShader& shader, const CameraBasis& camera,
 
 }  // namespace
 
-PixelTrace tracePixel(const Scene& scene, const CameraBasis& camera,
-                      const RenderSettings& settings, int x, int y) {
+PixelTrace tracePixel(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
+                      int x, int y) {
     requireReferenceScene(scene);
     PixelTrace trace;
     trace.x = x;
@@ -113,11 +113,10 @@ Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings
     requireReferenceScene(scene);
     if (settings.width <= 0 || settings.height <= 0)
         throw Error("render: the image size must be positive (got " +
-                    std::to_string(settings.width) + " x " + std::to_string(settings.height) +
-                    ")");
+                    std::to_string(settings.width) + " x " + std::to_string(settings.height) + ")");
     if (settings.spp < 1 || settings.spp > kMaxSpp)
-        throw Error("render: samples per pixel must be 1.." + std::to_string(kMaxSpp) +
-                    " (got " + std::to_string(settings.spp) + ")");
+        throw Error("render: samples per pixel must be 1.." + std::to_string(kMaxSpp) + " (got " +
+                    std::to_string(settings.spp) + ")");
     sampleEnd(settings);  // the samples asked for are among the pixel's
     const int block = std::max(settings.block, 1);
     Frame frame(settings.width, settings.height);

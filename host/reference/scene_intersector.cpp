@@ -67,18 +67,18 @@ void SceneIntersector::forEachCandidate(const Ray& worldRay, double tMin, double
         if (!visit(int(index))) return;
     // Stopping: a tMax below tMin makes every box left a miss.
     bool stopped = false;
-    walkBvh(bvh_.bvh, worldRay, tMin, [&] { return stopped ? -1.0 : tMax; },
-            [&](std::uint32_t index) {
-                if (!stopped) stopped = !visit(int(index));
-            });
+    walkBvh(
+        bvh_.bvh, worldRay, tMin, [&] { return stopped ? -1.0 : tMax; },
+        [&](std::uint32_t index) {
+            if (!stopped) stopped = !visit(int(index));
+        });
 }
 
 std::optional<WorldHit> closestHit(const Scene& scene, const Ray& worldRay, double tMin) {
     return SceneIntersector(scene).closestHit(worldRay, tMin);
 }
 
-std::optional<WorldHit> closestHitBruteForce(const Scene& scene, const Ray& worldRay,
-                                             double tMin) {
+std::optional<WorldHit> closestHitBruteForce(const Scene& scene, const Ray& worldRay, double tMin) {
     std::optional<WorldHit> best;
     for (std::size_t i = 0; i < scene.objects.size(); ++i)
         keepBetter(intersectObject(scene, scene.objects[i], int(i), worldRay, tMin), best);

@@ -137,10 +137,8 @@ glm::dvec3 WhittedShader::radiance(const Ray& ray, int level, const Medium& medi
     if (material.transparency > scene_.minTransparency) {
         // Entering pushes the object's medium, leaving pops it; on total
         // internal reflection the ray stays where it was, mirrored.
-        const Medium beyond =
-            hit->entering ? medium.entered(material.speedOfLight) : medium.left();
-        const std::optional<glm::dvec3> t =
-            refractDirection(d, m, beyond.speed() / medium.speed());
+        const Medium beyond = hit->entering ? medium.entered(material.speedOfLight) : medium.left();
+        const std::optional<glm::dvec3> t = refractDirection(d, m, beyond.speed() / medium.speed());
         const glm::dvec3 direction = t ? *t : reflectDirection(d, m);
         const Ray transmitted{offsetRayOrigin(hit->point, hit->geometricNormal, direction),
                               direction};

@@ -25,9 +25,9 @@ struct Medium {
     std::array<double, kMediumStackSize> speeds{};
     int depth = 0;
 
-    double speed() const;                 // c of the medium the ray is in
-    Medium entered(double speed) const;   // through the surface of an object of that speed
-    Medium left() const;                  // out of the innermost object
+    double speed() const;                // c of the medium the ray is in
+    Medium entered(double speed) const;  // through the surface of an object of that speed
+    Medium left() const;                 // out of the innermost object
 };
 
 // Where a secondary ray leaving hit point p in `direction` starts: p moved

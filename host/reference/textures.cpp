@@ -45,8 +45,8 @@ glm::dvec3 oddColor(const Material& material, const glm::dvec3& fallback) {
 glm::dvec3 checkerboard(const glm::dvec3& g, double size, const glm::dvec3& color) {
     // Half a cell of shift puts the generic shapes' faces (0, +-1) inside
     // cells rather than on their borders when size = 1/n.
-    const double cell = std::floor(g.x / size + 0.5) + std::floor(g.y / size + 0.5) +
-                        std::floor(g.z / size + 0.5);
+    const double cell =
+        std::floor(g.x / size + 0.5) + std::floor(g.y / size + 0.5) + std::floor(g.z / size + 0.5);
     return isOdd(cell) ? color : glm::dvec3(1);
 }
 
@@ -90,8 +90,9 @@ glm::dvec3 nearestTexel(const Image& image, glm::dvec2 uv) {
     const double u = fract(uv.x), v = std::clamp(uv.y, 0.0, 1.0);
     const int x = std::clamp(int(std::floor(u * image.width)), 0, image.width - 1);
     const int y = std::clamp(int(std::floor((1 - v) * image.height)), 0, image.height - 1);
-    const float* texel = &image.pixels[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) *
-                                       std::size_t(image.channels)];
+    const float* texel =
+        &image.pixels[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) *
+                      std::size_t(image.channels)];
     return {texel[0], texel[1], texel[2]};
 }
 

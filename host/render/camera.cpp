@@ -1,17 +1,17 @@
 #include "render/camera.h"
 
-#include "util/error.h"
 #include "shaders/sampling.h"
+#include "util/error.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
-#include <sstream>
-#include <string>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <sstream>
+#include <string>
 
 namespace vkray {
 
@@ -138,8 +138,8 @@ std::vector<glm::vec3> hitPoints(const Frame& frame, const CameraBasis& camera,
 }
 
 int sampleEnd(const RenderSettings& settings) {
-    const int end = settings.sampleCount > 0 ? settings.firstSample + settings.sampleCount
-                                             : settings.spp;
+    const int end =
+        settings.sampleCount > 0 ? settings.firstSample + settings.sampleCount : settings.spp;
     if (settings.firstSample < 0 || settings.sampleCount < 0 || settings.firstSample >= end ||
         end > settings.spp)
         throw Error("render: samples " + std::to_string(settings.firstSample) + " .. " +

@@ -21,7 +21,7 @@ struct RenderSettings {
     int width = 640;
     int height = 480;
     int block = 1;
-    int spp = 1;              // 1..kMaxSpp; 1: the pixel (block) centre
+    int spp = 1;  // 1..kMaxSpp; 1: the pixel (block) centre
     std::uint32_t seed = 0;
     // The samples traced, of the spp each pixel has: sampleCount of them
     // from firstSample on (0: all from there). The colour is their mean; the
@@ -58,7 +58,9 @@ Camera autoCamera(const Scene& scene);
 // The image point, in pixels (x right, y down, continuous), that the primary
 // ray of pixel (x, y) goes through: the pixel centre, or with block > 1 the
 // centre of the block holding it.
-struct PixelSample { double px, py; };
+struct PixelSample {
+    double px, py;
+};
 PixelSample primarySample(int x, int y, int block);
 
 // Sample k (0 <= k < settings.spp) of pixel (x, y): with spp 1 the

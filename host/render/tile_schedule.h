@@ -26,8 +26,8 @@ inline std::vector<TileRect> tilesOf(int width, int height, int side, bool serpe
     for (int y = 0, row = 0; y < height; y += side, ++row) {
         const std::size_t rowStart = tiles.size();
         for (int x = 0; x < width; x += side)
-            tiles.push_back({x, y, side < width - x ? side : width - x,
-                             side < height - y ? side : height - y});
+            tiles.push_back(
+                {x, y, side < width - x ? side : width - x, side < height - y ? side : height - y});
         if (serpentine && row % 2 == 1) std::reverse(tiles.begin() + long(rowStart), tiles.end());
     }
     return tiles;

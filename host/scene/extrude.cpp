@@ -10,8 +10,8 @@
 #include <glm/vec2.hpp>
 #include <string>
 
-#include "util/error.h"
 #include "scene/triangle_mesh.h"
+#include "util/error.h"
 
 namespace vkray {
 

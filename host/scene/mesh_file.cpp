@@ -1,6 +1,5 @@
 #include "scene/mesh_file.h"
 
-
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -15,10 +14,10 @@
 #include <optional>
 #include <system_error>
 
+#include "scene/scene.h"
 #include "util/error.h"
 #include "util/file_loc.h"
 #include "util/files.h"
-#include "scene/scene.h"
 
 namespace vkray {
 

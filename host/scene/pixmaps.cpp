@@ -67,18 +67,20 @@ void checkTexture(SceneObject& object, const Scene& scene, bool lenient,
                       ? "texture 3 needs 'parameters 1 i' naming a 'makePixmap i FILE'; "
                         "there are no parameters"
                       : "texture 3 needs a pixmap index (a whole number >= 0) as its first "
-                        "parameter; found " + std::to_string(material.textureParameters[0]);
+                        "parameter; found " +
+                            std::to_string(material.textureParameters[0]);
     } else if (!findPixmap(scene, index)) {
         bool leftOut = false;
         for (const Pixmap& pixmap : scene.pixmaps) leftOut = leftOut || pixmap.index == index;
-        problem = "texture 3 uses pixmap " + std::to_string(index) +
-                  (leftOut ? ", which could not be loaded"
-                           : ", but the scene has no 'makePixmap " + std::to_string(index) +
-                                 " FILE'");
+        problem =
+            "texture 3 uses pixmap " + std::to_string(index) +
+            (leftOut ? ", which could not be loaded"
+                     : ", but the scene has no 'makePixmap " + std::to_string(index) + " FILE'");
     }
     if (problem.empty()) return;
-    if (lenient) problem += "; the '" + std::string(shapeKeyword(object.type)) + "' at " +
-                            object.loc.str() + " is drawn untextured";
+    if (lenient)
+        problem += "; the '" + std::string(shapeKeyword(object.type)) + "' at " + object.loc.str() +
+                   " is drawn untextured";
     report(lenient, warnings, where, problem);
     material.texture = 0;  // lenient only: report() threw otherwise
 }
@@ -102,9 +104,8 @@ void loadPixmaps(Scene& scene, bool lenient, std::vector<std::string>* warnings)
     for (std::size_t i = 0; i < scene.pixmaps.size(); ++i) {
         Pixmap& pixmap = scene.pixmaps[i];
         pixmap.image = nullptr;
-        const std::string what =
-            "cannot load pixmap '" + writtenName(pixmap.loc, pixmap.file) + "' (makePixmap " +
-            std::to_string(pixmap.index) + ")";
+        const std::string what = "cannot load pixmap '" + writtenName(pixmap.loc, pixmap.file) +
+                                 "' (makePixmap " + std::to_string(pixmap.index) + ")";
         bool duplicate = false;
         for (std::size_t j = 0; j < i && !duplicate; ++j) {
             if (scene.pixmaps[j].index != pixmap.index) continue;

@@ -27,8 +27,8 @@
 #include <glm/geometric.hpp>
 #include <numbers>
 
-#include "util/error.h"
 #include "scene/triangle_mesh.h"
+#include "util/error.h"
 
 namespace vkray {
 
@@ -71,69 +71,58 @@ std::vector<glm::dvec3> icosahedronVertices() {
 std::vector<glm::dvec3> solidVertices(ShapeType type) {
     std::vector<glm::dvec3> points;
     switch (type) {
-        case ShapeType::Tetrahedron:
-            points = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
-            break;
-        case ShapeType::Octahedron:
-            points = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-            break;
-        case ShapeType::Icosahedron:
-            return icosahedronVertices();
-        case ShapeType::Dodecahedron:
-            for (int signs = 0; signs < 8; ++signs)
-                points.emplace_back(signs & 1 ? -1 : 1, signs & 2 ? -1 : 1, signs & 4 ? -1 : 1);
-            addCyclicPermutations(points, {0, 1 / kPhi, kPhi});
-            break;
-        case ShapeType::Buckyball: {
-            const std::vector<glm::dvec3> icosahedron = icosahedronVertices();
-            double edge = std::numeric_limits<double>::infinity();
-            for (std::size_t i = 0; i < icosahedron.size(); ++i)
-                for (std::size_t j = i + 1; j < icosahedron.size(); ++j)
-                    edge = std::min(edge, glm::distance(icosahedron[i], icosahedron[j]));
-            for (std::size_t i = 0; i < icosahedron.size(); ++i) {
-                for (std::size_t j = i + 1; j < icosahedron.size(); ++j) {
-                    if (glm::distance(icosahedron[i], icosahedron[j]) > edge * (1 + 1e-9)) continue;
-                    points.push_back((2.0 * icosahedron[i] + icosahedron[j]) / 3.0);
-                    points.push_back((icosahedron[i] + 2.0 * icosahedron[j]) / 3.0);
-                }
+    case ShapeType::Tetrahedron: points = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}}; break;
+    case ShapeType::Octahedron:
+        points = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        break;
+    case ShapeType::Icosahedron: return icosahedronVertices();
+    case ShapeType::Dodecahedron:
+        for (int signs = 0; signs < 8; ++signs)
+            points.emplace_back(signs & 1 ? -1 : 1, signs & 2 ? -1 : 1, signs & 4 ? -1 : 1);
+        addCyclicPermutations(points, {0, 1 / kPhi, kPhi});
+        break;
+    case ShapeType::Buckyball: {
+        const std::vector<glm::dvec3> icosahedron = icosahedronVertices();
+        double edge = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < icosahedron.size(); ++i)
+            for (std::size_t j = i + 1; j < icosahedron.size(); ++j)
+                edge = std::min(edge, glm::distance(icosahedron[i], icosahedron[j]));
+        for (std::size_t i = 0; i < icosahedron.size(); ++i) {
+            for (std::size_t j = i + 1; j < icosahedron.size(); ++j) {
+                if (glm::distance(icosahedron[i], icosahedron[j]) > edge * (1 + 1e-9)) continue;
+                points.push_back((2.0 * icosahedron[i] + icosahedron[j]) / 3.0);
+                points.push_back((icosahedron[i] + 2.0 * icosahedron[j]) / 3.0);
             }
-            break;
         }
-        case ShapeType::Diamond: {
-            constexpr double kTableRadius = 0.55, kCrownHeight = 0.3, kPavilionDepth = 0.86;
-            constexpr double kStep = std::numbers::pi / 4;
-            for (int k = 0; k < 8; ++k)
-                points.emplace_back(std::cos(k * kStep), 0.0, std::sin(k * kStep));
-            for (int k = 0; k < 8; ++k) {
-                const double angle = (k + 0.5) * kStep;
-                points.emplace_back(kTableRadius * std::cos(angle), kCrownHeight,
-                                    kTableRadius * std::sin(angle));
-            }
-            points.emplace_back(0.0, -kPavilionDepth, 0.0);
-            return points;  // the girdle is at radius 1 already
+        break;
+    }
+    case ShapeType::Diamond: {
+        constexpr double kTableRadius = 0.55, kCrownHeight = 0.3, kPavilionDepth = 0.86;
+        constexpr double kStep = std::numbers::pi / 4;
+        for (int k = 0; k < 8; ++k)
+            points.emplace_back(std::cos(k * kStep), 0.0, std::sin(k * kStep));
+        for (int k = 0; k < 8; ++k) {
+            const double angle = (k + 0.5) * kStep;
+            points.emplace_back(kTableRadius * std::cos(angle), kCrownHeight,
+                                kTableRadius * std::sin(angle));
         }
-        default:
-            throw Error(std::string("'") + shapeKeyword(type) + "' is not a built-in solid");
+        points.emplace_back(0.0, -kPavilionDepth, 0.0);
+        return points;  // the girdle is at radius 1 already
+    }
+    default: throw Error(std::string("'") + shapeKeyword(type) + "' is not a built-in solid");
     }
     return withCircumradiusOne(points);
 }
 
 const char* builtInName(ShapeType type) {
     switch (type) {
-        case ShapeType::Tetrahedron:
-            return "built-in tetrahedron";
-        case ShapeType::Octahedron:
-            return "built-in octahedron";
-        case ShapeType::Dodecahedron:
-            return "built-in dodecahedron";
-        case ShapeType::Icosahedron:
-            return "built-in icosahedron";
-        case ShapeType::Buckyball:
-            return "built-in buckyball";
-        case ShapeType::Diamond:
-            return "built-in diamond";
-        default:
-            return "built-in";
+    case ShapeType::Tetrahedron: return "built-in tetrahedron";
+    case ShapeType::Octahedron: return "built-in octahedron";
+    case ShapeType::Dodecahedron: return "built-in dodecahedron";
+    case ShapeType::Icosahedron: return "built-in icosahedron";
+    case ShapeType::Buckyball: return "built-in buckyball";
+    case ShapeType::Diamond: return "built-in diamond";
+    default: return "built-in";
     }
 }
 

@@ -4,10 +4,10 @@ namespace vkray {
 
 const char* shapeKeyword(ShapeType type) {
     static const char* const names[kShapeTypeCount] = {
-        "sphere",      "plane",        "square",       "cube",        "cylinder",
-        "cone",        "taperedCylinder", "torus",     "teapot",      "tetrahedron",
-        "octahedron",  "dodecahedron", "icosahedron",  "buckyball",   "diamond",
-        "mesh",        "extrude",      "union",        "intersection", "difference",
+        "sphere",     "plane",           "square",      "cube",         "cylinder",
+        "cone",       "taperedCylinder", "torus",       "teapot",       "tetrahedron",
+        "octahedron", "dodecahedron",    "icosahedron", "buckyball",    "diamond",
+        "mesh",       "extrude",         "union",       "intersection", "difference",
     };
     return names[static_cast<int>(type)];
 }

@@ -21,9 +21,26 @@ struct Image;         // image/image_io.h
 // Every shape keyword of Hill's SDL (plus the extrude extension), in the
 // order of shapeKeyword().
 enum class ShapeType {
-    Sphere, Plane, Square, Cube, Cylinder, Cone, TaperedCylinder, Torus, Teapot,
-    Tetrahedron, Octahedron, Dodecahedron, Icosahedron, Buckyball, Diamond,
-    Mesh, Extrude, Union, Intersection, Difference,
+    Sphere,
+    Plane,
+    Square,
+    Cube,
+    Cylinder,
+    Cone,
+    TaperedCylinder,
+    Torus,
+    Teapot,
+    Tetrahedron,
+    Octahedron,
+    Dodecahedron,
+    Icosahedron,
+    Buckyball,
+    Diamond,
+    Mesh,
+    Extrude,
+    Union,
+    Intersection,
+    Difference,
 };
 inline constexpr int kShapeTypeCount = 20;
 
@@ -48,20 +65,20 @@ struct Material {
     double speedOfLight = 1;
     double specularFraction = 0;
     double surfaceRoughness = 0;
-    int texture = 0;                  // `texture n`: 0 none, 1 checkerboard, 2 wood, 3 image
+    int texture = 0;                        // `texture n`: 0 none, 1 checkerboard, 2 wood, 3 image
     std::vector<double> textureParameters;  // `parameters n p1 .. pn`
-    FileLoc textureLoc;               // the `texture` word (errors about the texture)
+    FileLoc textureLoc;                     // the `texture` word (errors about the texture)
 };
 
 struct SceneObject {
     ShapeType type = ShapeType::Sphere;
-    FileLoc loc;                        // the shape keyword
-    glm::dmat4 worldFromObject{1.0};    // M: generic object space -> world
-    glm::dmat4 objectFromWorld{1.0};    // M^-1, composed from exact inverses
+    FileLoc loc;                      // the shape keyword
+    glm::dmat4 worldFromObject{1.0};  // M: generic object space -> world
+    glm::dmat4 objectFromWorld{1.0};  // M^-1, composed from exact inverses
     Material material;
-    double taper = 1;                   // taperedCylinder s (cylinder 1, cone 0)
-    std::string file;                   // mesh / extrude: path resolved against the scene's folder
-    int mesh = -1;                      // mesh, extrude, polyhedra, teapot: index into Scene::meshes
+    double taper = 1;  // taperedCylinder s (cylinder 1, cone 0)
+    std::string file;  // mesh / extrude: path resolved against the scene's folder
+    int mesh = -1;     // mesh, extrude, polyhedra, teapot: index into Scene::meshes
     std::vector<SceneObject> operands;  // union / intersection / difference: exactly two
 };
 
@@ -113,14 +130,14 @@ struct Scene {
     glm::dvec3 globalAmbient{0.1, 0.1, 0.1};
     double minReflectivity = 0.5;
     double minTransparency = 0.5;
-    int maxRecursionDepth = 3;         // 0..kMaxRecursionDepth
+    int maxRecursionDepth = 3;  // 0..kMaxRecursionDepth
     std::vector<Light> lights;
     std::vector<SceneObject> objects;  // scene order: object id i is objects[i]
     std::vector<Pixmap> pixmaps;
     // Filled by loadSceneGeometry (scene/scene_geometry.h): one entry per
     // distinct mesh file, extruded outline or built-in solid.
     std::vector<std::shared_ptr<const TriangleMesh>> meshes;
-    std::optional<Camera> camera;      // set by the `camera` extension
+    std::optional<Camera> camera;  // set by the `camera` extension
 };
 
 }  // namespace vkray

@@ -10,9 +10,9 @@
 #include <optional>
 #include <utility>
 
-#include "util/error.h"
 #include "scene/pixmaps.h"
 #include "scene/triangle_mesh.h"
+#include "util/error.h"
 
 namespace vkray {
 
@@ -151,28 +151,26 @@ Aabb unboundedBox() {
 // plane, or a mesh not loaded yet).
 std::optional<Aabb> genericBounds(const SceneObject& object, const Scene& scene) {
     switch (object.type) {
-        case ShapeType::Sphere:
-        case ShapeType::Cube:
-            return Aabb{glm::dvec3(-1), glm::dvec3(1)};
-        case ShapeType::Square:
-            return Aabb{glm::dvec3(-1, -1, 0), glm::dvec3(1, 1, 0)};
-        case ShapeType::Cylinder:
-        case ShapeType::Cone:
-        case ShapeType::TaperedCylinder: {
-            // Radius 1 at z = 0, |s| at z = 1 (a negative s mirrors the same surface).
-            const double radius = std::max(1.0, std::abs(object.taper));
-            return Aabb{glm::dvec3(-radius, -radius, 0), glm::dvec3(radius, radius, 1)};
-        }
-        case ShapeType::Torus: {
-            const double outer = kTorusMajorRadius + kTorusTubeRadius;
-            return Aabb{glm::dvec3(-outer, -outer, -kTorusTubeRadius),
-                        glm::dvec3(outer, outer, kTorusTubeRadius)};
-        }
-        default:
-            if (isMeshShape(object.type) && object.mesh >= 0 &&
-                std::size_t(object.mesh) < scene.meshes.size())
-                return scene.meshes[std::size_t(object.mesh)]->bounds;
-            return std::nullopt;
+    case ShapeType::Sphere:
+    case ShapeType::Cube: return Aabb{glm::dvec3(-1), glm::dvec3(1)};
+    case ShapeType::Square: return Aabb{glm::dvec3(-1, -1, 0), glm::dvec3(1, 1, 0)};
+    case ShapeType::Cylinder:
+    case ShapeType::Cone:
+    case ShapeType::TaperedCylinder: {
+        // Radius 1 at z = 0, |s| at z = 1 (a negative s mirrors the same surface).
+        const double radius = std::max(1.0, std::abs(object.taper));
+        return Aabb{glm::dvec3(-radius, -radius, 0), glm::dvec3(radius, radius, 1)};
+    }
+    case ShapeType::Torus: {
+        const double outer = kTorusMajorRadius + kTorusTubeRadius;
+        return Aabb{glm::dvec3(-outer, -outer, -kTorusTubeRadius),
+                    glm::dvec3(outer, outer, kTorusTubeRadius)};
+    }
+    default:
+        if (isMeshShape(object.type) && object.mesh >= 0 &&
+            std::size_t(object.mesh) < scene.meshes.size())
+            return scene.meshes[std::size_t(object.mesh)]->bounds;
+        return std::nullopt;
     }
 }
 

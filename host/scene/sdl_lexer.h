@@ -12,8 +12,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "util/file_loc.h"
 #include "scene/sdl_reader.h"
+#include "util/file_loc.h"
 
 namespace vkray {
 

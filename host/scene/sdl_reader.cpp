@@ -15,10 +15,10 @@
 #include <unordered_map>
 #include <utility>
 
-#include "util/error.h"
-#include "util/files.h"
 #include "scene/scene_builder.h"
 #include "scene/sdl_lexer.h"
+#include "util/error.h"
+#include "util/files.h"
 
 namespace vkray {
 
@@ -214,145 +214,107 @@ void SdlParser::skipUnknown(const Token& word) {
 
 void SdlParser::parseSetting(Keyword keyword, const Token& word) {
     switch (keyword) {
-        case Keyword::Light: {
-            Light light;
-            light.position = readVec3(word);
-            light.color = readVec3(word);
-            light.loc = word.loc;
-            builder_.scene().lights.push_back(light);
-            break;
-        }
-        case Keyword::Background:
-            builder_.scene().background = readVec3(word);
-            break;
-        case Keyword::GlobalAmbient:
-            builder_.scene().globalAmbient = readVec3(word);
-            break;
-        case Keyword::MinReflectivity:
-            builder_.scene().minReflectivity = readNumber(word);
-            break;
-        case Keyword::MinTransparency:
-            builder_.scene().minTransparency = readNumber(word);
-            break;
-        case Keyword::MaxRecursionDepth: {
-            Token where;
-            const double depth = readNumber(word, &where);
-            if (depth < 0 || depth > kMaxRecursionDepth || depth != std::floor(depth))
-                throwAt(where, "'maxRecursionDepth' needs a whole number from 0 to " +
-                                   std::to_string(kMaxRecursionDepth) + ", found " +
-                                   inQuotes(where.text) +
-                                   " (the GPU follows reflections and refractions with a "
-                                   "stack of that depth)");
-            builder_.scene().maxRecursionDepth = int(depth);
-            break;
-        }
+    case Keyword::Light: {
+        Light light;
+        light.position = readVec3(word);
+        light.color = readVec3(word);
+        light.loc = word.loc;
+        builder_.scene().lights.push_back(light);
+        break;
+    }
+    case Keyword::Background: builder_.scene().background = readVec3(word); break;
+    case Keyword::GlobalAmbient: builder_.scene().globalAmbient = readVec3(word); break;
+    case Keyword::MinReflectivity: builder_.scene().minReflectivity = readNumber(word); break;
+    case Keyword::MinTransparency: builder_.scene().minTransparency = readNumber(word); break;
+    case Keyword::MaxRecursionDepth: {
+        Token where;
+        const double depth = readNumber(word, &where);
+        if (depth < 0 || depth > kMaxRecursionDepth || depth != std::floor(depth))
+            throwAt(where, "'maxRecursionDepth' needs a whole number from 0 to " +
+                               std::to_string(kMaxRecursionDepth) + ", found " +
+                               inQuotes(where.text) +
+                               " (the GPU follows reflections and refractions with a "
+                               "stack of that depth)");
+        builder_.scene().maxRecursionDepth = int(depth);
+        break;
+    }
 
-        case Keyword::Translate: {
-            const glm::dvec3 d = readVec3(word);
-            builder_.transform(word, glm::translate(glm::dmat4(1.0), d),
+    case Keyword::Translate: {
+        const glm::dvec3 d = readVec3(word);
+        builder_.transform(word, glm::translate(glm::dmat4(1.0), d),
                            glm::translate(glm::dmat4(1.0), -d));
-            break;
-        }
-        case Keyword::Rotate: {
-            const double degrees = readNumber(word);
-            const glm::dvec3 axis = readVec3(word);
-            if (axis == glm::dvec3(0.0)) throwAt(word, "rotate axis 0 0 0 has no direction");
-            // Scaled to a largest component of 1 first: a tiny axis (1e-200 0 0)
-            // would underflow to length 0 and a huge one overflow.
-            const double largest = std::max({std::abs(axis.x), std::abs(axis.y), std::abs(axis.z)});
-            const glm::dvec3 unitAxis = glm::normalize(axis / largest);
-            const double radians = glm::radians(degrees);
-            builder_.transform(word, glm::rotate(glm::dmat4(1.0), radians, unitAxis),
+        break;
+    }
+    case Keyword::Rotate: {
+        const double degrees = readNumber(word);
+        const glm::dvec3 axis = readVec3(word);
+        if (axis == glm::dvec3(0.0)) throwAt(word, "rotate axis 0 0 0 has no direction");
+        // Scaled to a largest component of 1 first: a tiny axis (1e-200 0 0)
+        // would underflow to length 0 and a huge one overflow.
+        const double largest = std::max({std::abs(axis.x), std::abs(axis.y), std::abs(axis.z)});
+        const glm::dvec3 unitAxis = glm::normalize(axis / largest);
+        const double radians = glm::radians(degrees);
+        builder_.transform(word, glm::rotate(glm::dmat4(1.0), radians, unitAxis),
                            glm::rotate(glm::dmat4(1.0), -radians, unitAxis));
-            break;
-        }
-        case Keyword::Scale: {
-            const glm::dvec3 s = readVec3(word);
-            if (s.x == 0 || s.y == 0 || s.z == 0)
-                throwAt(word, "scale factor 0 makes the transform singular");
-            builder_.transform(word, glm::scale(glm::dmat4(1.0), s),
+        break;
+    }
+    case Keyword::Scale: {
+        const glm::dvec3 s = readVec3(word);
+        if (s.x == 0 || s.y == 0 || s.z == 0)
+            throwAt(word, "scale factor 0 makes the transform singular");
+        builder_.transform(word, glm::scale(glm::dmat4(1.0), s),
                            glm::scale(glm::dmat4(1.0), 1.0 / s));
-            break;
-        }
-        case Keyword::Push:
-            builder_.push();
-            break;
-        case Keyword::Pop:
-            builder_.pop(word);
-            break;
-        case Keyword::IdentityAffine:
-            builder_.identityAffine();
-            break;
+        break;
+    }
+    case Keyword::Push: builder_.push(); break;
+    case Keyword::Pop: builder_.pop(word); break;
+    case Keyword::IdentityAffine: builder_.identityAffine(); break;
 
-        case Keyword::Ambient:
-            builder_.material().ambient = readVec3(word);
-            break;
-        case Keyword::Diffuse:
-            builder_.material().diffuse = readVec3(word);
-            break;
-        case Keyword::Specular:
-            builder_.material().specular = readVec3(word);
-            break;
-        case Keyword::Emissive:
-            builder_.material().emissive = readVec3(word);
-            break;
-        case Keyword::SpecularExponent:
-            builder_.material().specularExponent = readNumber(word);
-            break;
-        case Keyword::Reflectivity:
-            builder_.material().reflectivity = readNumber(word);
-            break;
-        case Keyword::Transparency:
-            builder_.material().transparency = readNumber(word);
-            break;
-        case Keyword::SpeedOfLight:
-            builder_.material().speedOfLight = readNumber(word);
-            break;
-        case Keyword::SpecularFraction:
-            builder_.material().specularFraction = readNumber(word);
-            break;
-        case Keyword::SurfaceRoughness:
-            builder_.material().surfaceRoughness = readNumber(word);
-            break;
-        case Keyword::Texture: {
-            Token where;
-            double code = readNumber(word, &where);
-            if (code != 0 && code != 1 && code != 2 && code != 3) {
-                const std::string message =
-                    "texture " + where.text + " is not one of 0 none, 1 checkerboard, 2 wood, 3 image";
-                if (!options_.lenient) throwAt(word, message);
-                // Lenient: real files write codes of other dialects (`texture -1`);
-                // the shapes after it are drawn as with `texture 0`.
-                if (warnings_)
-                    warnings_->push_back(
-                        diagnosticAt(word, "warning", message + "; drawn without a texture (as texture 0)"));
-                code = 0;
-            }
-            builder_.material().texture = int(code);
-            builder_.material().textureLoc = word.loc;
-            break;
+    case Keyword::Ambient: builder_.material().ambient = readVec3(word); break;
+    case Keyword::Diffuse: builder_.material().diffuse = readVec3(word); break;
+    case Keyword::Specular: builder_.material().specular = readVec3(word); break;
+    case Keyword::Emissive: builder_.material().emissive = readVec3(word); break;
+    case Keyword::SpecularExponent: builder_.material().specularExponent = readNumber(word); break;
+    case Keyword::Reflectivity: builder_.material().reflectivity = readNumber(word); break;
+    case Keyword::Transparency: builder_.material().transparency = readNumber(word); break;
+    case Keyword::SpeedOfLight: builder_.material().speedOfLight = readNumber(word); break;
+    case Keyword::SpecularFraction: builder_.material().specularFraction = readNumber(word); break;
+    case Keyword::SurfaceRoughness: builder_.material().surfaceRoughness = readNumber(word); break;
+    case Keyword::Texture: {
+        Token where;
+        double code = readNumber(word, &where);
+        if (code != 0 && code != 1 && code != 2 && code != 3) {
+            const std::string message =
+                "texture " + where.text + " is not one of 0 none, 1 checkerboard, 2 wood, 3 image";
+            if (!options_.lenient) throwAt(word, message);
+            // Lenient: real files write codes of other dialects (`texture -1`);
+            // the shapes after it are drawn as with `texture 0`.
+            if (warnings_)
+                warnings_->push_back(diagnosticAt(
+                    word, "warning", message + "; drawn without a texture (as texture 0)"));
+            code = 0;
         }
-        case Keyword::Parameters: {
-            const int count = readCount(word, "a parameter count >= 0");
-            std::vector<double> parameters;
-            for (int i = 0; i < count; ++i) parameters.push_back(readNumber(word));
-            builder_.material().textureParameters = std::move(parameters);
-            break;
-        }
-        case Keyword::DefaultMaterials:
-            builder_.defaultMaterials();
-            break;
-        case Keyword::MakePixmap: {
-            Pixmap pixmap;
-            pixmap.index = readCount(word, "a pixmap number >= 0");
-            pixmap.file = readFileName(word);
-            pixmap.loc = word.loc;
-            builder_.scene().pixmaps.push_back(std::move(pixmap));
-            break;
-        }
-        case Keyword::Camera:
-            parseCamera(word);
-            break;
+        builder_.material().texture = int(code);
+        builder_.material().textureLoc = word.loc;
+        break;
+    }
+    case Keyword::Parameters: {
+        const int count = readCount(word, "a parameter count >= 0");
+        std::vector<double> parameters;
+        for (int i = 0; i < count; ++i) parameters.push_back(readNumber(word));
+        builder_.material().textureParameters = std::move(parameters);
+        break;
+    }
+    case Keyword::DefaultMaterials: builder_.defaultMaterials(); break;
+    case Keyword::MakePixmap: {
+        Pixmap pixmap;
+        pixmap.index = readCount(word, "a pixmap number >= 0");
+        pixmap.file = readFileName(word);
+        pixmap.loc = word.loc;
+        builder_.scene().pixmaps.push_back(std::move(pixmap));
+        break;
+    }
+    case Keyword::Camera: parseCamera(word); break;
     }
 }
 
@@ -388,18 +350,11 @@ void SdlParser::parseShape(ShapeType type, const Token& word) {
     object.type = type;
     object.loc = word.loc;
     switch (type) {
-        case ShapeType::Cone:
-            object.taper = 0;
-            break;
-        case ShapeType::TaperedCylinder:
-            object.taper = readNumber(word);
-            break;
-        case ShapeType::Mesh:
-        case ShapeType::Extrude:
-            object.file = readFileName(word);
-            break;
-        default:
-            break;
+    case ShapeType::Cone: object.taper = 0; break;
+    case ShapeType::TaperedCylinder: object.taper = readNumber(word); break;
+    case ShapeType::Mesh:
+    case ShapeType::Extrude: object.file = readFileName(word); break;
+    default: break;
     }
     builder_.shape(std::move(object), word);
 }
@@ -415,17 +370,16 @@ double SdlParser::readNumber(const Token& keyword, Token* where) {
     const Token argument = nextArgument(keyword, "a number");
     double value = 0;
     switch (parseSdlNumber(argument.text, value)) {
-        case NumberStatus::Ok:
-            break;
-        case NumberStatus::Malformed:
-            throwAt(argument, "expected a number after " + inQuotes(keyword.text) + ", found " +
-                                  inQuotes(argument.text));
-        case NumberStatus::NotFinite:
-            throwAt(argument, "expected a finite number after " + inQuotes(keyword.text) +
-                                  ", found " + inQuotes(argument.text));
-        case NumberStatus::OutOfRange:
-            throwAt(argument, "number " + inQuotes(argument.text) + " after " +
-                                  inQuotes(keyword.text) + " is out of range");
+    case NumberStatus::Ok: break;
+    case NumberStatus::Malformed:
+        throwAt(argument, "expected a number after " + inQuotes(keyword.text) + ", found " +
+                              inQuotes(argument.text));
+    case NumberStatus::NotFinite:
+        throwAt(argument, "expected a finite number after " + inQuotes(keyword.text) + ", found " +
+                              inQuotes(argument.text));
+    case NumberStatus::OutOfRange:
+        throwAt(argument, "number " + inQuotes(argument.text) + " after " + inQuotes(keyword.text) +
+                              " is out of range");
     }
     if (std::abs(value) > kMaxSceneMagnitude)
         throwAt(argument, "number " + inQuotes(argument.text) + " after " + inQuotes(keyword.text) +

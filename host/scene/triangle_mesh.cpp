@@ -151,16 +151,14 @@ TriangleMesh meshFrom3vn(const PolygonMesh& polygons) {
 
 bool isBuiltInMesh(ShapeType type) {
     switch (type) {
-        case ShapeType::Teapot:
-        case ShapeType::Tetrahedron:
-        case ShapeType::Octahedron:
-        case ShapeType::Dodecahedron:
-        case ShapeType::Icosahedron:
-        case ShapeType::Buckyball:
-        case ShapeType::Diamond:
-            return true;
-        default:
-            return false;
+    case ShapeType::Teapot:
+    case ShapeType::Tetrahedron:
+    case ShapeType::Octahedron:
+    case ShapeType::Dodecahedron:
+    case ShapeType::Icosahedron:
+    case ShapeType::Buckyball:
+    case ShapeType::Diamond: return true;
+    default: return false;
     }
 }
 

@@ -9,12 +9,15 @@ std::string FileLoc::str() const {
     return *file + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
 
-std::string formatDiagnostic(const FileLoc& loc, const Expansion* expansion,
-                             const char* severity, const std::string& message) {
+std::string formatDiagnostic(const FileLoc& loc, const Expansion* expansion, const char* severity,
+                             const std::string& message) {
     std::string out = loc.str() + ": " + severity + ": " + message;
     for (const Expansion* e = expansion; e; e = e->parent.get())
-        out.append("\n").append(e->useLoc.str()).append(": note: in text pasted by 'use ")
-            .append(e->name).append("'");
+        out.append("\n")
+            .append(e->useLoc.str())
+            .append(": note: in text pasted by 'use ")
+            .append(e->name)
+            .append("'");
     return out;
 }
 

@@ -5,9 +5,9 @@
 
 #include "scene/sdl_reader.h"
 
+#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
-#include <gtest/gtest.h>
 
 #include <cmath>
 

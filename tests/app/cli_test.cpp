@@ -4,8 +4,8 @@
 #include "image/image_io.h"
 #include "support/cli_fixture.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +21,7 @@ const char* kGoodScene = "camera eye 0 0 5\nlight 5 5 5 1 1 1\nsphere\n";
 
 TEST_F(Cli, RenderWritesImageAndAovsAndReportsTime) {
     RunResult run = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png") +
-                    " --aov " + path("aov") + " --size 64x48");
+                          " --aov " + path("aov") + " --size 64x48");
     ASSERT_EQ(run.status, 0) << run.output;
     EXPECT_NE(run.output.find("device: "), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("Mrays/s"), std::string::npos) << run.output;
@@ -179,7 +179,7 @@ TEST_F(Cli, CpuAndGpuImagesCompareWithinTolerance) {
     EXPECT_EQ(same.status, 0) << same.output;
     EXPECT_NE(same.output.find("PSNR"), std::string::npos) << same.output;
     RunResult loose = vkray("compare " + path("gpu.png") + " " + path("cpu.png") +
-                      " --fail 0.02 --failpercent 1 --diff " + path("diff.png"));
+                            " --fail 0.02 --failpercent 1 --diff " + path("diff.png"));
     EXPECT_EQ(loose.status, 0) << loose.output;
     EXPECT_TRUE(fs::exists(dir / "diff.png"));
 }
@@ -187,7 +187,8 @@ TEST_F(Cli, CpuAndGpuImagesCompareWithinTolerance) {
 TEST_F(Cli, CompareBeyondToleranceExitsTwo) {
     const std::string s = scene("s.sdl", kGoodScene);
     ASSERT_EQ(vkray("render " + s + " -o " + path("a.png") + " --size 64x48").status, 0);
-    ASSERT_EQ(vkray("render " + s + " -o " + path("b.png") + " --size 64x48 --eye 0,0.5,5").status, 0);
+    ASSERT_EQ(vkray("render " + s + " -o " + path("b.png") + " --size 64x48 --eye 0,0.5,5").status,
+              0);
     RunResult run = vkray("compare " + path("a.png") + " " + path("b.png"));
     EXPECT_EQ(run.status, 2) << run.output;
     EXPECT_NE(run.output.find("FAIL"), std::string::npos) << run.output;
@@ -195,7 +196,7 @@ TEST_F(Cli, CompareBeyondToleranceExitsTwo) {
 
 TEST_F(Cli, CheckRendersBothAndReportsIds) {
     RunResult run = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png") +
-                    " --size 64x48 --check --diff " + path("diff.png"));
+                          " --size 64x48 --check --diff " + path("diff.png"));
     EXPECT_EQ(run.status, 0) << run.output;
     EXPECT_NE(run.output.find("object ids"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("RMSE"), std::string::npos) << run.output;
@@ -223,7 +224,8 @@ TEST_F(Cli, RecursiveDef) {
 }
 
 TEST_F(Cli, MissingMeshNamesItsPlace) {
-    expectRenderError("sphere\n mesh missing.3vn\n", "bad.sdl:2:2: error: cannot load mesh 'missing.3vn'");
+    expectRenderError("sphere\n mesh missing.3vn\n",
+                      "bad.sdl:2:2: error: cannot load mesh 'missing.3vn'");
 }
 
 TEST_F(Cli, EveryErrorOfASceneIsReportedAndNothingIsWritten) {
@@ -249,7 +251,8 @@ TEST_F(Cli, AbsurdSize) {
 }
 
 TEST_F(Cli, UnwritableOutputPath) {
-    RunResult run = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("no/such/dir/out.png"));
+    RunResult run =
+        vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("no/such/dir/out.png"));
     EXPECT_EQ(run.status, 1) << run.output;
     EXPECT_NE(run.output.find("no/such/dir"), std::string::npos) << run.output;
     EXPECT_FALSE(fs::exists(dir / "no"));
@@ -266,12 +269,14 @@ TEST_F(Cli, LenientModeWarnsAndRenders) {
 }
 
 TEST_F(Cli, LenientRenderReadsAnUnknownTextureCodeAsNone) {
-    const std::string s = scene("s.sdl", "camera eye 0 0 5\nlight 5 5 5 1 1 1\ntexture -1\nsphere\n");
+    const std::string s =
+        scene("s.sdl", "camera eye 0 0 5\nlight 5 5 5 1 1 1\ntexture -1\nsphere\n");
     RunResult run = vkray("render " + s + " --lenient -o " + path("out.png") + " --size 32x24");
     EXPECT_EQ(run.status, 0) << run.output;
-    EXPECT_NE(run.output.find("s.sdl:3:1: warning: texture -1 is not one of 0 none, 1 checkerboard, "
-                              "2 wood, 3 image; drawn without a texture"),
-              std::string::npos)
+    EXPECT_NE(
+        run.output.find("s.sdl:3:1: warning: texture -1 is not one of 0 none, 1 checkerboard, "
+                        "2 wood, 3 image; drawn without a texture"),
+        std::string::npos)
         << run.output;
     EXPECT_TRUE(fs::exists(dir / "out.png"));
     // Strict: an error at the same place, and nothing written.
@@ -285,9 +290,9 @@ TEST_F(Cli, LenientRenderReadsAnUnknownTextureCodeAsNone) {
 
 TEST_F(Cli, EveryCommandsHelpExitsZeroWithItsFlags) {
     const std::vector<std::pair<std::string, std::string>> cases = {
-        {"render", "--spp"},      {"pixel", "--block"},     {"compare", "--ids"},
-        {"stress", "--cases"},    {"report", "--out"},      {"features", "--variant"},
-        {"difftest", "--scenes"}, {"view", "--frames"},     {"devices", "vkray devices"},
+        {"render", "--spp"},        {"pixel", "--block"},  {"compare", "--ids"},
+        {"stress", "--cases"},      {"report", "--out"},   {"features", "--variant"},
+        {"difftest", "--scenes"},   {"view", "--frames"},  {"devices", "vkray devices"},
         {"shaders check", "--all"}, {"", "COMMAND --help"}};
     for (const auto& [command, flag] : cases) {
         RunResult run = vkray(command + " --help");
@@ -296,18 +301,21 @@ TEST_F(Cli, EveryCommandsHelpExitsZeroWithItsFlags) {
     }
     RunResult bad = vkray("render " + scene("s.sdl", kGoodScene) + " --spp 0");
     EXPECT_EQ(bad.status, 1) << bad.output;
-    EXPECT_NE(bad.output.find("vkray: error: --spp: 0 is out of range (1 .. 4096)"), std::string::npos)
+    EXPECT_NE(bad.output.find("vkray: error: --spp: 0 is out of range (1 .. 4096)"),
+              std::string::npos)
         << bad.output;
     RunResult unknown = vkray("report --bogus");
     EXPECT_EQ(unknown.status, 1) << unknown.output;
-    EXPECT_NE(unknown.output.find("unknown option '--bogus' for `vkray report`; try `vkray report --help`"),
-              std::string::npos) << unknown.output;
+    EXPECT_NE(unknown.output.find(
+                  "unknown option '--bogus' for `vkray report`; try `vkray report --help`"),
+              std::string::npos)
+        << unknown.output;
     expectNoOutputs();
 }
 
 TEST_F(Cli, NoVulkanDriverGivesAdviceAndExitsOne) {
     RunResult run = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png"),
-                    "VK_ICD_FILENAMES=" + path("none.json"));
+                          "VK_ICD_FILENAMES=" + path("none.json"));
     EXPECT_EQ(run.status, 1) << run.output;
     EXPECT_NE(run.output.find("--cpu"), std::string::npos) << run.output;
     expectNoOutputs();

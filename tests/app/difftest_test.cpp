@@ -19,7 +19,8 @@ namespace fs = std::filesystem;
 
 size_t scenesLeftIn(const fs::path& folder) {
     size_t n = 0;
-    for (const auto& entry : fs::directory_iterator(folder)) n += entry.path().extension() == ".sdl";
+    for (const auto& entry : fs::directory_iterator(folder))
+        n += entry.path().extension() == ".sdl";
     return n;
 }
 
@@ -47,7 +48,8 @@ fs::path shadersWith(const fs::path& dir, const std::string& name,
     std::string source = text.str();
     for (const auto& [from, to] : edits) {
         EXPECT_NE(source.find(from), std::string::npos) << from;
-        if (source.find(from) != std::string::npos) source.replace(source.find(from), from.size(), to);
+        if (source.find(from) != std::string::npos)
+            source.replace(source.find(from), from.size(), to);
     }
     std::ofstream(file) << source;
     return dir / "shaders";
@@ -61,14 +63,17 @@ TEST_F(Difftest, OverTheBoundAtItsSizeButWithinItAt160x120IsReportedApart) {
         dir, "trace.comp",
         {{"            result.color.rgb = ray.sum.rgb / float(endSample - firstSample);\n",
           "            result.color.rgb = ray.sum.rgb / float(endSample - firstSample);\n"
-          "            if (rayPixel.y == 0u && rayPixel.x < 2u) result.color.rgb = step(result.color.rgb, vec3(0.5));\n"}});
+          "            if (rayPixel.y == 0u && rayPixel.x < 2u) result.color.rgb = "
+          "step(result.color.rgb, vec3(0.5));\n"}});
     RunResult run = vkray("difftest --scenes 1 --seed 101 --precision robust --shader-dir " +
                           shaders.string() + " --out " + path("found"));
     EXPECT_EQ(run.status, 0) << run.output;
-    EXPECT_NE(run.output.find("at 160x120 only: seed 101 (robust): 40x30: 0.167 % of pixels over 0.02"),
-              std::string::npos)
+    EXPECT_NE(
+        run.output.find("at 160x120 only: seed 101 (robust): 40x30: 0.167 % of pixels over 0.02"),
+        std::string::npos)
         << run.output;
-    EXPECT_NE(run.output.find("; 160x120: 0.0104 % of pixels over 0.02"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("; 160x120: 0.0104 % of pixels over 0.02"), std::string::npos)
+        << run.output;
     EXPECT_NE(run.output.find("robust 0 of 1 agreed (and 1 at 160x120 only)"), std::string::npos)
         << run.output;
     EXPECT_NE(run.output.find("difftest: 1 passed, 0 failed"), std::string::npos) << run.output;
@@ -78,9 +83,10 @@ TEST_F(Difftest, OverTheBoundAtItsSizeButWithinItAt160x120IsReportedApart) {
 TEST_F(Difftest, AGpuThatDrawsSomethingElseIsCaught) {
     // The shaders as built, but every light term and the background at 90 %
     // of their strength: a GPU that is only a little wrong.
-    shadersWith(dir, "shade.glsl",
-                {{"    return diffuse + specular;\n", "    return 0.9 * (diffuse + specular);\n"},
-                 {"task.weight * frame.background.rgb", "task.weight * 0.9 * frame.background.rgb"}});
+    shadersWith(
+        dir, "shade.glsl",
+        {{"    return diffuse + specular;\n", "    return 0.9 * (diffuse + specular);\n"},
+         {"task.weight * frame.background.rgb", "task.weight * 0.9 * frame.background.rgb"}});
 
     RunResult run = vkray("difftest --scenes 3 --seed 100 --shader-dir " + path("shaders") +
                           " --out " + path("found"));

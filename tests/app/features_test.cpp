@@ -32,7 +32,8 @@ std::vector<std::string> buffers(const std::string& output) {
     if (start == std::string::npos) return result;
     std::istringstream lines(output.substr(start + 9));
     for (std::string line; std::getline(lines, line) && line.rfind("  ", 0) == 0;)
-        result.push_back(std::regex_replace(line.substr(line.find_first_not_of(' ')), std::regex(" +"), " "));
+        result.push_back(
+            std::regex_replace(line.substr(line.find_first_not_of(' ')), std::regex(" +"), " "));
     return result;
 }
 
@@ -83,11 +84,18 @@ TEST_F(Features, MeshSceneBindsMeshAndBvhBuffers) {
     std::vector<std::string> bound;
     for (const std::string& line : lines)
         bound.push_back(line.substr(0, std::min(line.find(" storage"), line.find(" texels"))));
-    const std::vector<std::string> expected{"0 frame uniform 144 bytes", "1 objects",
-                                            "18 materials", "2 lights",
-                                            "3 pixels", "15 ray progress", "16 dispatch status",
-                                            "5 object BVH nodes", "6 object BVH index",
-                                            "7 meshes", "8 mesh BVH nodes", "9 triangles"};
+    const std::vector<std::string> expected{"0 frame uniform 144 bytes",
+                                            "1 objects",
+                                            "18 materials",
+                                            "2 lights",
+                                            "3 pixels",
+                                            "15 ray progress",
+                                            "16 dispatch status",
+                                            "5 object BVH nodes",
+                                            "6 object BVH index",
+                                            "7 meshes",
+                                            "8 mesh BVH nodes",
+                                            "9 triangles"};
     EXPECT_EQ(bound, expected) << run.output;
     // 10 balls + mesh + extrusion in the BVH's index, then the plane.
     EXPECT_NE(std::find(lines.begin(), lines.end(), "6 object BVH index texels 52 bytes (13 x 4)"),
@@ -99,11 +107,12 @@ TEST_F(Features, VariantAllCompilesEveryFeatureAndBindsTheirBuffers) {
     RunResult run = vkray("features " + kScenes + "default.sdl --variant all -D EXTRA=2");
     ASSERT_EQ(run.status, 0) << run.output;
     EXPECT_EQ(field(run.output, "variant"), "all shapes+all shading");
-    EXPECT_EQ(field(run.output, "defines"),
-              "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_SQUARE=1 VKRAY_SHAPE_CUBE=1 "
-              "VKRAY_SHAPE_TAPERED_CYLINDER=1 VKRAY_SHAPE_TORUS=1 VKRAY_SHAPE_MESH=1 VKRAY_CSG=1 "
-              "VKRAY_SHADOWS=1 VKRAY_REFLECTION=1 VKRAY_REFRACTION=1 VKRAY_TEXTURES=1 "
-              "VKRAY_PIXMAPS=1 VKRAY_ANTIALIAS=1 VKRAY_LIGHTS=1 EXTRA=2 (every other variant flag 0)");
+    EXPECT_EQ(
+        field(run.output, "defines"),
+        "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_SQUARE=1 VKRAY_SHAPE_CUBE=1 "
+        "VKRAY_SHAPE_TAPERED_CYLINDER=1 VKRAY_SHAPE_TORUS=1 VKRAY_SHAPE_MESH=1 VKRAY_CSG=1 "
+        "VKRAY_SHADOWS=1 VKRAY_REFLECTION=1 VKRAY_REFRACTION=1 VKRAY_TEXTURES=1 "
+        "VKRAY_PIXMAPS=1 VKRAY_ANTIALIAS=1 VKRAY_LIGHTS=1 EXTRA=2 (every other variant flag 0)");
     // The scene's own needs are still reported as the scene's.
     EXPECT_EQ(field(run.output, "reflection").substr(0, 3), "no ") << run.output;
     // The pending rays (maxRecursionDepth 3 + 1 entries), the mesh, CSG and
@@ -111,16 +120,20 @@ TEST_F(Features, VariantAllCompilesEveryFeatureAndBindsTheirBuffers) {
     const std::vector<std::string> lines = buffers(run.output);
     ASSERT_EQ(lines.size(), 14u) << run.output;
     EXPECT_EQ(lines[7], "17 pending rays storage one tile of 4-entry stacks of 64-byte rays");
-    EXPECT_EQ(lines[10], "9 triangles texels empty (one 96-byte element: Vulkan has no empty buffers)");
-    EXPECT_EQ(lines[11], "10 CSG nodes texels empty (one 16-byte element: Vulkan has no empty buffers)");
-    EXPECT_EQ(lines[13], "12 pixmap texels texels empty (one 4-byte element: Vulkan has no empty buffers)");
+    EXPECT_EQ(lines[10],
+              "9 triangles texels empty (one 96-byte element: Vulkan has no empty buffers)");
+    EXPECT_EQ(lines[11],
+              "10 CSG nodes texels empty (one 16-byte element: Vulkan has no empty buffers)");
+    EXPECT_EQ(lines[13],
+              "12 pixmap texels texels empty (one 4-byte element: Vulkan has no empty buffers)");
 }
 
 TEST_F(Features, SecondaryRaysFollowLightsThresholdsAndDepth) {
     // Two objects and a light: shadows. Reflectivity 0.6 > 0.5 but
     // transparency 0.4 <= minTransparency 0.5.
-    RunResult lit = vkray("features " + scene("m.sdl", "light 1 2 3 1 1 1\nreflectivity 0.6\n"
-                                                        "transparency 0.4 sphere cube\n"));
+    RunResult lit = vkray("features " + scene("m.sdl",
+                                              "light 1 2 3 1 1 1\nreflectivity 0.6\n"
+                                              "transparency 0.4 sphere cube\n"));
     ASSERT_EQ(lit.status, 0) << lit.output;
     EXPECT_EQ(field(lit.output, "shadows"), "yes (1 light, 2 objects)");
     EXPECT_EQ(field(lit.output, "reflection"),
@@ -130,11 +143,13 @@ TEST_F(Features, SecondaryRaysFollowLightsThresholdsAndDepth) {
     EXPECT_EQ(field(lit.output, "variant"), "sphere+cube+shadows+reflection");
     EXPECT_EQ(field(lit.output, "samples"), "1 per pixel (pixel centres, no antialiasing)");
     // A lower threshold turns refraction on; depth 0 turns both off.
-    RunResult low = vkray("features " + scene("l.sdl", "minTransparency 0.1 transparency 0.4 sphere\n"));
+    RunResult low =
+        vkray("features " + scene("l.sdl", "minTransparency 0.1 transparency 0.4 sphere\n"));
     EXPECT_EQ(field(low.output, "refraction").substr(0, 4), "yes ") << low.output;
     EXPECT_EQ(field(low.output, "shadows"), "no (no lights)");
-    RunResult flat = vkray("features " + scene("f.sdl", "maxRecursionDepth 0 light 1 2 3 1 1 1\n"
-                                                         "reflectivity 0.9 plane\n"));
+    RunResult flat = vkray("features " + scene("f.sdl",
+                                               "maxRecursionDepth 0 light 1 2 3 1 1 1\n"
+                                               "reflectivity 0.9 plane\n"));
     EXPECT_EQ(field(flat.output, "reflection"),
               "no (1 object with reflectivity > minReflectivity 0.5, but maxRecursionDepth 0)")
         << flat.output;
@@ -142,8 +157,8 @@ TEST_F(Features, SecondaryRaysFollowLightsThresholdsAndDepth) {
               "no (one plane or square: no feeler can meet it again)");
     EXPECT_EQ(field(flat.output, "maxRecursionDepth"), "0");
     // --spp adds antialiasing; textures are listed by kind.
-    RunResult textured = vkray("features " + scene("t.sdl", "texture 1 sphere texture 2 cube\n") +
-                               " --spp 4");
+    RunResult textured =
+        vkray("features " + scene("t.sdl", "texture 1 sphere texture 2 cube\n") + " --spp 4");
     EXPECT_EQ(field(textured.output, "textures"), "1 checkerboard, 1 wood") << textured.output;
     EXPECT_EQ(field(textured.output, "samples"), "4 per pixel (antialiasing)");
     EXPECT_EQ(field(textured.output, "variant"), "sphere+cube+textures+antialias");

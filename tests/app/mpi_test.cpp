@@ -44,7 +44,8 @@ TEST_F(Mpi, VersionSaysMpiIsBuiltIn) {
     const RunResult ranks = mpirun("-np 2 " + binary() + " --version");
     EXPECT_EQ(ranks.status, 0) << ranks.output;
     EXPECT_EQ(ranks.output.find("MPI: built in"), ranks.output.rfind("MPI: built in"))
-        << "rank 0 alone answers:\n" << ranks.output;
+        << "rank 0 alone answers:\n"
+        << ranks.output;
 }
 
 TEST_F(Mpi, TwoRanksRenderTheSameBytesAsOne) {
@@ -52,8 +53,8 @@ TEST_F(Mpi, TwoRanksRenderTheSameBytesAsOne) {
     // shadows, reflection, refraction, textures.
     const std::string scene = std::string(VKRAY_SOURCE_DIR) + "/scenes/whitted.sdl";
     const std::string common = " --size 200x150 --spp 4 --seed 7 --quiet";
-    const RunResult one = vkray("render " + scene + " -o " + path("one.png") + " --aov " +
-                                path("one") + common);
+    const RunResult one =
+        vkray("render " + scene + " -o " + path("one.png") + " --aov " + path("one") + common);
     ASSERT_EQ(one.status, 0) << one.output;
     const RunResult two = mpirun("-np 2 " + binary() + " render " + scene + " -o " +
                                  path("two.png") + " --aov " + path("two") + common);
@@ -104,8 +105,8 @@ TEST_F(Mpi, StressAndReportHoldWhatOneRankFinds) {
 TEST_F(Mpi, AFailingRankEndsTheRunNamingItselfAndWritesNothing) {
     // Rank 1 alone finds no compute device (the test hook of docs/reliability.md).
     const std::string scene = std::string(VKRAY_SOURCE_DIR) + "/scenes/default.sdl";
-    const std::string render = binary() + " render " + scene + " -o " + path("out.png") +
-                               " --size 320x240 --quiet";
+    const std::string render =
+        binary() + " render " + scene + " -o " + path("out.png") + " --size 320x240 --quiet";
     const auto start = std::chrono::steady_clock::now();
     const RunResult run =
         mpirun("-np 1 " + render + " : -np 1 -x VKRAY_FAULT=no-compute " + render);
@@ -124,11 +125,12 @@ TEST_F(Mpi, CommandsThatDoNotDistributeAreRefused) {
     const std::string scene = std::string(VKRAY_SOURCE_DIR) + "/scenes/default.sdl";
     const RunResult pixel = mpirun("-np 2 " + binary() + " pixel " + scene + " 10 10");
     EXPECT_EQ(pixel.status, 1) << pixel.output;
-    EXPECT_NE(pixel.output.find("only `vkray render`, `vkray stress` and `vkray report` run across"),
-              std::string::npos)
+    EXPECT_NE(
+        pixel.output.find("only `vkray render`, `vkray stress` and `vkray report` run across"),
+        std::string::npos)
         << pixel.output;
-    const RunResult cpu = mpirun("-np 2 " + binary() + " render " + scene + " -o " +
-                                 path("out.png") + " --cpu");
+    const RunResult cpu =
+        mpirun("-np 2 " + binary() + " render " + scene + " -o " + path("out.png") + " --cpu");
     EXPECT_EQ(cpu.status, 1) << cpu.output;
     EXPECT_NE(cpu.output.find("--cpu renders in one process"), std::string::npos) << cpu.output;
     expectNoOutputs();

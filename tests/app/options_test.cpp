@@ -6,7 +6,9 @@
 namespace vkray {
 namespace {
 
-Options parse(std::vector<std::string> args) { return parseOptions(args); }
+Options parse(std::vector<std::string> args) {
+    return parseOptions(args);
+}
 
 std::string errorOf(std::vector<std::string> args) {
     try {
@@ -18,9 +20,10 @@ std::string errorOf(std::vector<std::string> args) {
 }
 
 TEST(Options, RenderWithEveryFlag) {
-    Options o = parse({"render", "s.sdl", "-o", "x.png", "--size", "320x200", "--device=1",
-                       "--block", "4", "--aov", "out/a", "--lenient", "--eye", "1,2,3",
-                       "--look=0,0,-1.5", "--up", "0,0,1", "--fov", "45", "--threads", "2"});
+    Options o =
+        parse({"render",          "s.sdl", "-o",    "x.png", "--size",    "320x200",   "--device=1",
+               "--block",         "4",     "--aov", "out/a", "--lenient", "--eye",     "1,2,3",
+               "--look=0,0,-1.5", "--up",  "0,0,1", "--fov", "45",        "--threads", "2"});
     EXPECT_EQ(o.command, Command::Render);
     EXPECT_EQ(o.scenePath, "s.sdl");
     EXPECT_EQ(o.outputPath, "x.png");
@@ -38,8 +41,8 @@ TEST(Options, RenderWithEveryFlag) {
 }
 
 TEST(Options, CheckAndCompareTolerances) {
-    Options check = parse({"render", "s.sdl", "--check", "--diff", "d.png", "--fail", "0.1",
-                           "--failpercent", "2"});
+    Options check = parse(
+        {"render", "s.sdl", "--check", "--diff", "d.png", "--fail", "0.1", "--failpercent", "2"});
     EXPECT_TRUE(check.check);
     EXPECT_EQ(check.diffPath, "d.png");
     EXPECT_EQ(*check.failThreshold, 0.1);
@@ -56,10 +59,12 @@ TEST(Options, BadUsageNamesTheFlag) {
               std::string::npos);
     EXPECT_NE(errorOf({"render", "s.sdl", "--size", "16384x16384"}).find("more than the limit"),
               std::string::npos);
-    EXPECT_NE(errorOf({"render", "s.sdl", "--size", "abc"}).find("WIDTHxHEIGHT"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--size", "abc"}).find("WIDTHxHEIGHT"),
+              std::string::npos);
     EXPECT_NE(errorOf({"render", "s.sdl", "--bogus"}).find("unknown option '--bogus'"),
               std::string::npos);
-    EXPECT_NE(errorOf({"render", "s.sdl", "--eye", "1,2"}).find("three numbers"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--eye", "1,2"}).find("three numbers"),
+              std::string::npos);
     EXPECT_NE(errorOf({"render", "s.sdl", "--block"}).find("expects a value"), std::string::npos);
     EXPECT_NE(errorOf({"render"}).find("one scene file"), std::string::npos);
     EXPECT_NE(errorOf({"render", "s.sdl", "--cpu", "--check"}).find("--check"), std::string::npos);
@@ -96,13 +101,17 @@ TEST(Options, SamplesPerPixelAndSeed) {
 }
 
 TEST(Options, BadSamplesOrSeedNameTheFlag) {
-    EXPECT_NE(errorOf({"render", "s.sdl", "--spp", "0"}).find("--spp: 0 is out of range (1 .. 4096)"),
+    EXPECT_NE(
+        errorOf({"render", "s.sdl", "--spp", "0"}).find("--spp: 0 is out of range (1 .. 4096)"),
+        std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--spp", "4097"}).find("out of range"),
               std::string::npos);
-    EXPECT_NE(errorOf({"render", "s.sdl", "--spp", "4097"}).find("out of range"), std::string::npos);
-    EXPECT_NE(errorOf({"render", "s.sdl", "--spp", "2.5"}).find("--spp: '2.5' is not a whole number"),
-              std::string::npos);
-    EXPECT_NE(errorOf({"render", "s.sdl", "--seed", "-1"}).find("--seed: '-1' is not a whole number"),
-              std::string::npos);
+    EXPECT_NE(
+        errorOf({"render", "s.sdl", "--spp", "2.5"}).find("--spp: '2.5' is not a whole number"),
+        std::string::npos);
+    EXPECT_NE(
+        errorOf({"render", "s.sdl", "--seed", "-1"}).find("--seed: '-1' is not a whole number"),
+        std::string::npos);
     EXPECT_NE(errorOf({"render", "s.sdl", "--seed", "4294967296"}).find("0 to 4294967295"),
               std::string::npos);
     EXPECT_NE(errorOf({"render", "s.sdl", "--seed", "x"}).find("--seed"), std::string::npos);
@@ -112,8 +121,8 @@ TEST(Options, BadSamplesOrSeedNameTheFlag) {
 }
 
 TEST(Options, ViewDefaultsAndItsOwnFlags) {
-    const Options o = parse({"view", "s.sdl", "--frames", "5", "--screenshot", "a.png", "--events", "e.txt",
-                             "--fail", "0.1", "--eye", "1,2,3"});
+    const Options o = parse({"view", "s.sdl", "--frames", "5", "--screenshot", "a.png", "--events",
+                             "e.txt", "--fail", "0.1", "--eye", "1,2,3"});
     EXPECT_EQ(o.command, Command::View);
     EXPECT_EQ(o.scenePath, "s.sdl");
     EXPECT_EQ(o.width, 960);
@@ -128,35 +137,46 @@ TEST(Options, ViewDefaultsAndItsOwnFlags) {
 }
 
 TEST(Options, ViewRefusesWhatItDoesNotDo) {
-    EXPECT_NE(errorOf({"view", "s.sdl", "--screenshot", "a.png"}).find("--screenshot needs --frames N"),
-              std::string::npos);
-    EXPECT_NE(errorOf({"view", "s.sdl", "--frames", "2", "--screenshot", "a.jpg"}).find("is a .png file"),
-              std::string::npos);
+    EXPECT_NE(
+        errorOf({"view", "s.sdl", "--screenshot", "a.png"}).find("--screenshot needs --frames N"),
+        std::string::npos);
+    EXPECT_NE(
+        errorOf({"view", "s.sdl", "--frames", "2", "--screenshot", "a.jpg"}).find("is a .png file"),
+        std::string::npos);
     for (const char* flag : {"--block", "-o", "--aov", "--check"})
-        EXPECT_NE(errorOf({"view", "s.sdl", flag, "4"}).find("unknown option '" + std::string(flag) + "' for `vkray view`"),
-                  std::string::npos) << flag;
-    EXPECT_NE(errorOf({"view", "s.sdl", "--cpu"}).find("unknown option '--cpu'"), std::string::npos);
-    EXPECT_NE(errorOf({"render", "s.sdl", "--frames", "2"}).find("unknown option '--frames'"), std::string::npos);
+        EXPECT_NE(errorOf({"view", "s.sdl", flag, "4"})
+                      .find("unknown option '" + std::string(flag) + "' for `vkray view`"),
+                  std::string::npos)
+            << flag;
+    EXPECT_NE(errorOf({"view", "s.sdl", "--cpu"}).find("unknown option '--cpu'"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--frames", "2"}).find("unknown option '--frames'"),
+              std::string::npos);
     EXPECT_NE(errorOf({"view"}).find("view: expected one scene file"), std::string::npos);
-    EXPECT_NE(errorOf({"view", "s.sdl", "--frames", "0"}).find("--frames: 0 is out of range"), std::string::npos);
+    EXPECT_NE(errorOf({"view", "s.sdl", "--frames", "0"}).find("--frames: 0 is out of range"),
+              std::string::npos);
 }
 
 // Each command's --help is its own, generated from the flags it takes.
 TEST(Options, EveryCommandHasItsOwnHelp) {
     const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> cases = {
-        {{"render", "--help"}, {"vkray render", "SCENE", "-o,--output", "--spp", "--check", "--fail",
-                                "--failpercent", "--aov", "-D", "--watch", "Needs: --check", "Ctrl-C"}},
+        {{"render", "--help"},
+         {"vkray render", "SCENE", "-o,--output", "--spp", "--check", "--fail", "--failpercent",
+          "--aov", "-D", "--watch", "Needs: --check", "Ctrl-C"}},
         {{"pixel", "-h"}, {"vkray pixel", "SCENE", "X", "Y", "--block", "--precision"}},
         {{"compare", "--help"}, {"vkray compare", "--ids", "--diff", "--fail", "--failpercent"}},
         {{"stress", "--help"}, {"vkray stress", "--cases", "--cases-dir", "--out", "--size"}},
         {{"report", "--help"}, {"vkray report", "SCENE", "--out", "--fov", "--lenient"}},
         {{"features", "--help"}, {"vkray features", "--variant", "--spp", "-D"}},
         {{"difftest", "--help"}, {"vkray difftest", "--scenes", "--seed", "--variant", "--out"}},
-        {{"view", "--help"}, {"vkray view", "--frames", "--screenshot", "--events", "--fail", "keys:"}},
+        {{"view", "--help"},
+         {"vkray view", "--frames", "--screenshot", "--events", "--fail", "keys:"}},
         {{"devices", "--help"}, {"vkray devices"}},
-        {{"shaders", "check", "--help"}, {"vkray shaders check", "--all", "--precision", "--shader-dir"}},
-        {{"--help"}, {"render", "pixel", "compare", "stress", "report", "features", "difftest", "view",
-                      "devices", "shaders", "--version", "COMMAND --help"}},
+        {{"shaders", "check", "--help"},
+         {"vkray shaders check", "--all", "--precision", "--shader-dir"}},
+        {{"--help"},
+         {"render", "pixel", "compare", "stress", "report", "features", "difftest", "view",
+          "devices", "shaders", "--version", "COMMAND --help"}},
     };
     for (const auto& [args, texts] : cases) {
         const Options o = parse(args);
@@ -173,9 +193,12 @@ TEST(Options, EveryCommandHasItsOwnHelp) {
 }
 
 TEST(Options, ValuesOutOfRangeNameTheFlag) {
-    EXPECT_EQ(errorOf({"render", "s.sdl", "--threads", "0"}), "--threads: 0 is out of range (1 .. 1024)");
-    EXPECT_EQ(errorOf({"render", "s.sdl", "--block=2000"}), "--block: 2000 is out of range (1 .. 1024)");
-    EXPECT_EQ(errorOf({"difftest", "--scenes", "0"}), "--scenes: 0 is out of range (1 .. 100000000)");
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--threads", "0"}),
+              "--threads: 0 is out of range (1 .. 1024)");
+    EXPECT_EQ(errorOf({"render", "s.sdl", "--block=2000"}),
+              "--block: 2000 is out of range (1 .. 1024)");
+    EXPECT_EQ(errorOf({"difftest", "--scenes", "0"}),
+              "--scenes: 0 is out of range (1 .. 100000000)");
     EXPECT_EQ(errorOf({"stress", "--device", "x"}), "--device: 'x' is not a whole number");
     EXPECT_EQ(errorOf({"render", "s.sdl", "--failpercent", "101", "--check"}),
               "--failpercent: must be between 0 and 100");
@@ -194,14 +217,16 @@ TEST(Options, ValuesOutOfRangeNameTheFlag) {
 }
 
 TEST(Options, DefinesRepeatAndNegativeNumbersAreValues) {
-    const Options o = parse({"render", "s.sdl", "-D", "A=1", "-DB", "--eye", "-1,-2,-3", "-D", "C=x y"});
+    const Options o =
+        parse({"render", "s.sdl", "-D", "A=1", "-DB", "--eye", "-1,-2,-3", "-D", "C=x y"});
     ASSERT_EQ(o.defines.size(), 3u);
     EXPECT_EQ(o.defines[0], (std::pair<std::string, std::string>{"A", "1"}));
     EXPECT_EQ(o.defines[1], (std::pair<std::string, std::string>{"B", "1"}));
     EXPECT_EQ(o.defines[2], (std::pair<std::string, std::string>{"C", "x y"}));
     EXPECT_EQ(*o.eye, glm::dvec3(-1, -2, -3));
     EXPECT_EQ(o.scenePath, "s.sdl");
-    EXPECT_EQ(parse({"render", "s.sdl", "--spp", "2", "--spp", "8"}).spp, 8);  // the last one counts
+    EXPECT_EQ(parse({"render", "s.sdl", "--spp", "2", "--spp", "8"}).spp,
+              8);  // the last one counts
     EXPECT_EQ(parse({"--version"}).command, Command::Version);
     const Options check = parse({"shaders", "check", "--all"});
     EXPECT_EQ(check.command, Command::ShadersCheck);

@@ -40,12 +40,33 @@ TEST(RandomScene, EverySceneLoadsAndTogetherTheyCoverTheLanguage) {
     std::set<std::string> words;
     std::set<Precision> modes;
     bool bvh = false, antialiased = false, blocks = false, inside = false, near = false;
-    const char* const keywords[] = {
-        "sphere", "cube", "cylinder", "cone", "torus", "tetrahedron", "octahedron",
-        "dodecahedron", "icosahedron", "buckyball", "teapot", "square", "plane", "mesh",
-        "taperedCylinder -1", "taperedCylinder -0.5", "taperedCylinder 0 ", "taperedCylinder 2",
-        "union", "intersection", "difference", "texture 1", "texture 2", "emissive 0.",
-        "speedOfLight", "specularExponent", "rotate"};
+    const char* const keywords[] = {"sphere",
+                                    "cube",
+                                    "cylinder",
+                                    "cone",
+                                    "torus",
+                                    "tetrahedron",
+                                    "octahedron",
+                                    "dodecahedron",
+                                    "icosahedron",
+                                    "buckyball",
+                                    "teapot",
+                                    "square",
+                                    "plane",
+                                    "mesh",
+                                    "taperedCylinder -1",
+                                    "taperedCylinder -0.5",
+                                    "taperedCylinder 0 ",
+                                    "taperedCylinder 2",
+                                    "union",
+                                    "intersection",
+                                    "difference",
+                                    "texture 1",
+                                    "texture 2",
+                                    "emissive 0.",
+                                    "speedOfLight",
+                                    "specularExponent",
+                                    "rotate"};
     for (std::uint64_t seed = 0; seed < 300; ++seed) {
         const RandomScene r = randomScene(seed);
         const fs::path path = dir / "scene.sdl";
@@ -70,8 +91,10 @@ TEST(RandomScene, EverySceneLoadsAndTogetherTheyCoverTheLanguage) {
         // The generator's |M^-1 eye| of each object is the scene reader's.
         ASSERT_EQ(r.genericEye.size(), scene.objects.size()) << seed;
         for (size_t i = 0; i < scene.objects.size(); ++i) {
-            const glm::dvec3 generic(scene.objects[i].objectFromWorld * glm::dvec4(scene.camera->eye, 1));
-            EXPECT_NEAR(r.genericEye[i], glm::length(generic), 1e-9 * std::max(1.0, glm::length(generic)))
+            const glm::dvec3 generic(scene.objects[i].objectFromWorld *
+                                     glm::dvec4(scene.camera->eye, 1));
+            EXPECT_NEAR(r.genericEye[i], glm::length(generic),
+                        1e-9 * std::max(1.0, glm::length(generic)))
                 << "seed " << seed << ", object " << i;
         }
     }
@@ -124,7 +147,8 @@ TEST(RandomScene, EachModesScenesCoverTheirWholeEnvelopeAndStayInside) {
         for (const bool lone : {false, true}) {
             const EnvelopeLimits& env = lone ? envelope.lone : envelope.scenes;
             const SceneReach& m = most[lone];
-            const std::string name = std::string(precisionName(mode)) + (lone ? " lone" : " scenes");
+            const std::string name =
+                std::string(precisionName(mode)) + (lone ? " lone" : " scenes");
             EXPECT_GT(drawn[lone], 100) << name;
             EXPECT_GE(m.eye, env.farthestEye / 2) << name;
             EXPECT_GE(m.perCell, env.farthestPerCell / 2) << name;
@@ -142,7 +166,8 @@ TEST(RandomScene, EachModesScenesCoverTheirWholeEnvelopeAndStayInside) {
 // fp64 goes further than robust on every figure.
 TEST(RandomScene, Fp64sEnvelopeIsWiderThanRobusts) {
     const SceneEnvelope robust = envelopeOf(Precision::Robust), fp64 = envelopeOf(Precision::Fp64);
-    for (const auto& [r, f] : {std::pair{robust.scenes, fp64.scenes}, std::pair{robust.lone, fp64.lone}}) {
+    for (const auto& [r, f] :
+         {std::pair{robust.scenes, fp64.scenes}, std::pair{robust.lone, fp64.lone}}) {
         EXPECT_GT(f.farthestEye, r.farthestEye);
         EXPECT_GT(f.farthestGeneric, r.farthestGeneric);
         EXPECT_GT(f.farthestPerCell, r.farthestPerCell);

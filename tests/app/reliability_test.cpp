@@ -2,8 +2,8 @@
 // beyond the device's limits, absurd numbers, a device that fails, Ctrl-C in
 // the middle of a render. Each case: the message, the exit status, and the
 // files left (none new; an existing output untouched).
-#include "support/cli_fixture.h"
 #include "shaders/layout.h"
+#include "support/cli_fixture.h"
 
 #include <gtest/gtest.h>
 
@@ -37,8 +37,8 @@ std::string teapots() {
     std::ostringstream text;
     text << "camera eye 0 2 30 look 0 0 0\nlight 10 20 30 1 1 1\n";
     for (int i = 0; i < 36; ++i)
-        text << "push translate " << (i % 6) * 4 - 10 << " " << (i / 6) * 3 - 8
-             << " 0 rotate " << i * 10 << " 0 1 0 teapot pop\n";
+        text << "push translate " << (i % 6) * 4 - 10 << " " << (i / 6) * 3 - 8 << " 0 rotate "
+             << i * 10 << " 0 1 0 teapot pop\n";
     return text.str();
 }
 
@@ -59,8 +59,8 @@ void expectOnly(const fs::path& dir, std::set<std::string> names) {
 TEST_F(Reliability, ObjectsBeyondTheTexelBufferLimitAreRefusedBeforeAllocating) {
     // 100 objects of 4 texels (GpuObjectGeometry) are 400 texels; 256 allowed.
     const std::string s = scene("s.sdl", spheres(100));
-    RunResult run = vkray("render " + s + " -o " + path("out.png") + " --size 32x24",
-                          "VKRAY_MAX_TEXELS=256");
+    RunResult run =
+        vkray("render " + s + " -o " + path("out.png") + " --size 32x24", "VKRAY_MAX_TEXELS=256");
     EXPECT_EQ(run.status, 1) << run.output;
     EXPECT_NE(run.output.find("vkray: error: the scene's 100 objects need 400 texels in one "
                               "texel buffer; "),
@@ -80,8 +80,8 @@ TEST_F(Reliability, ObjectsBeyondTheTexelBufferLimitAreRefusedBeforeAllocating) 
 TEST_F(Reliability, TrianglesBeyondTheTexelBufferLimitNameTheTriangles) {
     // The teapot: 16256 triangles of 6 texels (and 16325 BVH nodes of 2, which fit).
     const std::string s = scene("s.sdl", "camera eye 0 0 5\nlight 5 5 5 1 1 1\nteapot\n");
-    RunResult run = vkray("render " + s + " -o " + path("out.png") + " --size 32x24",
-                          "VKRAY_MAX_TEXELS=60000");
+    RunResult run =
+        vkray("render " + s + " -o " + path("out.png") + " --size 32x24", "VKRAY_MAX_TEXELS=60000");
     EXPECT_EQ(run.status, 1) << run.output;
     EXPECT_NE(run.output.find("the scene's 16256 triangles need 97536 texels in one texel buffer"),
               std::string::npos)
@@ -112,7 +112,9 @@ TEST_F(Reliability, MemoryBeyondTheDeviceHeapIsRefusedBeforeAllocating) {
                           "VKRAY_DEVICE_MEMORY_BYTES=1000000");
     EXPECT_EQ(run.status, 1) << run.output;
     EXPECT_TRUE(std::regex_search(
-        run.output, std::regex(R"(the scene needs about \d+ bytes \(\d\.\d MiB\) of device memory \((ray progress|tile pixels) 2097152 bytes \(2\.0 MiB\), (ray progress|tile pixels) 2097152 bytes \(2\.0 MiB\), )")))
+        run.output,
+        std::regex(
+            R"(the scene needs about \d+ bytes \(\d\.\d MiB\) of device memory \((ray progress|tile pixels) 2097152 bytes \(2\.0 MiB\), (ray progress|tile pixels) 2097152 bytes \(2\.0 MiB\), )")))
         << run.output;
     EXPECT_NE(run.output.find("memory heap holds 1000000 bytes. Use fewer objects or smaller "
                               "meshes, or render with --cpu"),
@@ -135,7 +137,8 @@ TEST_F(Reliability, BadLimitHookIsAnError) {
 TEST_F(Reliability, AbsurdNumbersAreRefusedAtTheirPlaceOnGpuAndCpu) {
     for (const char* renderer : {"", "--cpu"}) {
         expectRenderError("sphere\ntranslate 0 0 1e39\nsphere\n",
-                          "bad.sdl:2:15: error: number '1e39' after 'translate' is beyond", renderer);
+                          "bad.sdl:2:15: error: number '1e39' after 'translate' is beyond",
+                          renderer);
         expectRenderError("sphere\nscale 1e-39 1 1\ncube\n",
                           "bad.sdl:2:1: error: 'scale' makes the inverse transform hold 1e+39",
                           renderer);
@@ -154,8 +157,8 @@ TEST_F(Reliability, AbsurdNumbersAreRefusedAtTheirPlaceOnGpuAndCpu) {
 // ---- devices -----------------------------------------------------------------
 
 TEST_F(Reliability, DeviceIndexOutOfRangeNamesTheDevices) {
-    RunResult run = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png") +
-                          " --device 99");
+    RunResult run =
+        vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png") + " --device 99");
     EXPECT_EQ(run.status, 1) << run.output;
     EXPECT_NE(run.output.find("--device 99: there are only "), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("`vkray devices` lists them"), std::string::npos) << run.output;
@@ -171,8 +174,9 @@ TEST_F(Reliability, NoDeviceWithComputeSaysWhatToInstall) {
     EXPECT_NE(run.output.find("mesa-vulkan-drivers"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("--cpu"), std::string::npos) << run.output;
     expectNoOutputs();
-    RunResult chosen = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png") +
-                             " --device 0", "VKRAY_FAULT=no-compute");
+    RunResult chosen =
+        vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png") + " --device 0",
+              "VKRAY_FAULT=no-compute");
     EXPECT_EQ(chosen.status, 1) << chosen.output;
     EXPECT_NE(chosen.output.find("--device 0 ("), std::string::npos) << chosen.output;
     EXPECT_NE(chosen.output.find("has no compute queue"), std::string::npos) << chosen.output;
@@ -222,8 +226,8 @@ TEST_F(Reliability, ExistingOutputIsReplacedOnlyByACompleteNewOne) {
     // One output of the set cannot be written (a folder is in its way): the
     // image, written first, must not replace the old one either.
     fs::create_directory(dir / "out.depth.pfm");
-    RunResult failed = vkray("render " + s + " -o " + path("out.png") + " --aov " + path("out") +
-                             " --size 32x24");
+    RunResult failed =
+        vkray("render " + s + " -o " + path("out.png") + " --aov " + path("out") + " --size 32x24");
     EXPECT_EQ(failed.status, 1) << failed.output;
     EXPECT_NE(failed.output.find("cannot write " + path("out.depth.pfm") + ": Is a directory"),
               std::string::npos)
@@ -232,8 +236,8 @@ TEST_F(Reliability, ExistingOutputIsReplacedOnlyByACompleteNewOne) {
     expectOnly(dir, {"s.sdl", "out.png", "out.depth.pfm"});
 
     fs::remove(dir / "out.depth.pfm");
-    RunResult ok = vkray("render " + s + " -o " + path("out.png") + " --aov " + path("out") +
-                         " --size 32x24");
+    RunResult ok =
+        vkray("render " + s + " -o " + path("out.png") + " --aov " + path("out") + " --size 32x24");
     ASSERT_EQ(ok.status, 0) << ok.output;
     // A whole PNG: it reads back.
     RunResult read = vkray("compare " + path("out.png") + " " + path("out.png"));
@@ -292,9 +296,9 @@ TEST_F(Reliability, ProgressLinesWhenStderrIsNotATerminal) {
     std::ofstream(scene) << teapots();
     // Paced: 144 tiles of at least 25 ms each, so at least two lines (one
     // a second at most) however fast the machine.
-    BackgroundVkray render("render " + scene.string() + " -o " + path("out.png") +
-                               " --size 3000x3000",
-                           dir / "log.txt", {"VKRAY_FAULT=slow-progress"});
+    BackgroundVkray render(
+        "render " + scene.string() + " -o " + path("out.png") + " --size 3000x3000",
+        dir / "log.txt", {"VKRAY_FAULT=slow-progress"});
     ASSERT_TRUE(render.waitFor("gpu render: ", 2)) << render.output();
     render.stop(SIGINT);
     // gpu render: 10% (900000 of 9000000 rays), 1.23 Mrays/s, 1 min 05 s left
@@ -318,9 +322,9 @@ TEST_F(Reliability, ProgressLinesWhenStderrIsNotATerminal) {
 TEST_F(Reliability, QuietShowsNoProgress) {
     const fs::path scene = dir / "teapots.sdl";
     std::ofstream(scene) << teapots();
-    BackgroundVkray render("render " + scene.string() + " -o " + path("out.png") +
-                               " --size 1500x1500 --quiet",
-                           dir / "log.txt");
+    BackgroundVkray render(
+        "render " + scene.string() + " -o " + path("out.png") + " --size 1500x1500 --quiet",
+        dir / "log.txt");
     ASSERT_TRUE(render.waitFor("scene: ")) << render.output();
     std::this_thread::sleep_for(std::chrono::milliseconds(2500));
     render.stop(SIGINT);

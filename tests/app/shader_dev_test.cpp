@@ -4,14 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <unistd.h>
 #include <chrono>
 #include <csignal>
-#include <fcntl.h>
 #include <regex>
 #include <sstream>
-#include <vector>
 #include <thread>
-#include <unistd.h>
+#include <vector>
 
 namespace {
 
@@ -22,10 +22,11 @@ using ShaderDev = vkray::test::CliTest;
 
 // A plane z = 0 seen head-on from (0, 0, 5): the centre pixel of a 3x3 image
 // looks straight down -z and meets the plane at t = 5, point (0, 0, 0).
-const char* kPlaneScene = "camera eye 0 0 5 look 0 0 0 up 0 1 0 fov 60\n"
-                          "light 0 0 10 1 1 1\n"
-                          "diffuse 0.5 0.5 0.5 specular 0.2 0.2 0.2 specularExponent 4\n"
-                          "plane\n";
+const char* kPlaneScene =
+    "camera eye 0 0 5 look 0 0 0 up 0 1 0 fov 60\n"
+    "light 0 0 10 1 1 1\n"
+    "diffuse 0.5 0.5 0.5 specular 0.2 0.2 0.2 specularExponent 4\n"
+    "plane\n";
 
 // The values of the row starting with `label`: "GPU CPU diff" as text.
 std::string rowOf(const std::string& output, const std::string& label) {
@@ -55,7 +56,8 @@ TEST_F(ShaderDev, PixelTracesTheAnalyticRayOnBothSides) {
     EXPECT_NE(rowOf(run.output, "light 0 specular").find("(0.200000003, 0.200000003, 0.200000003)"),
               std::string::npos)
         << run.output;
-    EXPECT_NE(rowOf(run.output, "light 0 specular").find("(0.20000000000000001, "), std::string::npos)
+    EXPECT_NE(rowOf(run.output, "light 0 specular").find("(0.20000000000000001, "),
+              std::string::npos)
         << run.output;
 }
 
@@ -70,7 +72,8 @@ TEST_F(ShaderDev, ShadersCheckCompilesEveryVariant) {
     EXPECT_EQ(run.status, 0) << run.output;
     // Every variant the check lists compiled: "N of N variants compiled".
     std::smatch counts;
-    ASSERT_TRUE(std::regex_search(run.output, counts, std::regex(R"((\d+) of (\d+) variants compiled)")))
+    ASSERT_TRUE(
+        std::regex_search(run.output, counts, std::regex(R"((\d+) of (\d+) variants compiled)")))
         << run.output;
     EXPECT_EQ(counts[1], counts[2]) << run.output;
     EXPECT_GT(std::stoi(counts[1]), 100) << "every pair of shapes, with and without the BVH";
@@ -96,8 +99,8 @@ TEST_F(ShaderDev, ShadersCheckNamesTheBrokenFileAndLine) {
 TEST_F(ShaderDev, DefinesChangeTheVariantAndDumpSpirvWritesIt) {
     const std::string s = scene("p.sdl", kPlaneScene);
     fs::create_directories(dir / "spv");
-    RunResult plain = vkray("render " + s + " -o " + path("a.png") + " --size 8x8 --dump-spirv " +
-                            path("spv"));
+    RunResult plain =
+        vkray("render " + s + " -o " + path("a.png") + " --size 8x8 --dump-spirv " + path("spv"));
     RunResult defined = vkray("render " + s + " -o " + path("b.png") +
                               " --size 8x8 -D VKRAY_EXAMPLE=2 --dump-spirv=" + path("spv"));
     ASSERT_EQ(plain.status, 0) << plain.output;
@@ -124,16 +127,17 @@ TEST_F(ShaderDev, ValidationLayerSeesNothingOnEveryScene) {
         EXPECT_EQ(run.status, 0) << entry.path() << "\n" << run.output;
         EXPECT_EQ(run.output.find("validation:"), std::string::npos) << run.output;
     }
-    RunResult pixel = vkray("pixel " + scene("p.sdl", kPlaneScene) + " 1 1 --size 3x3 --validation");
+    RunResult pixel =
+        vkray("pixel " + scene("p.sdl", kPlaneScene) + " 1 1 --size 3x3 --validation");
     EXPECT_EQ(pixel.status, 0) << pixel.output;
 }
 
 TEST_F(ShaderDev, DevicesListsWhatAShaderDeveloperNeeds) {
     RunResult run = vkray("devices");
     ASSERT_EQ(run.status, 0) << run.output;
-    for (const char* field : {"[render picks this]", "type ", "driver ", "Vulkan 1.",
-                              "shaderFloat64 ", "subgroup size ", "max storage buffer ",
-                              "max workgroup size "})
+    for (const char* field :
+         {"[render picks this]", "type ", "driver ", "Vulkan 1.", "shaderFloat64 ",
+          "subgroup size ", "max storage buffer ", "max workgroup size "})
         EXPECT_NE(run.output.find(field), std::string::npos) << field << "\n" << run.output;
 }
 

@@ -42,14 +42,16 @@ test::VirtualDisplay& virtualDisplay() {
 // The line of `output` that starts with `start` (without its newline), or "".
 std::string lineStarting(const std::string& output, const std::string& start) {
     const size_t at = output.rfind("\n" + start);
-    if (at == std::string::npos) return output.rfind(start, 0) == 0 ? output.substr(0, output.find('\n')) : "";
+    if (at == std::string::npos)
+        return output.rfind(start, 0) == 0 ? output.substr(0, output.find('\n')) : "";
     return output.substr(at + 1, output.find('\n', at + 1) - at - 1);
 }
 
 // The whole number that follows `before` in `text`, or -1.
 long numberAfter(const std::string& text, const std::string& before) {
     const size_t at = text.find(before);
-    return at == std::string::npos ? -1 : std::strtol(text.c_str() + at + before.size(), nullptr, 10);
+    return at == std::string::npos ? -1
+                                   : std::strtol(text.c_str() + at + before.size(), nullptr, 10);
 }
 
 std::string bytesOf(const std::string& path) {
@@ -69,8 +71,8 @@ protected:
     std::string events(const std::string& text) { return scene("events.txt", text); }
     // The view in the background, for what must happen while it is open.
     std::unique_ptr<test::BackgroundVkray> viewInBackground(const std::string& args) {
-        return std::make_unique<test::BackgroundVkray>(
-            "view " + args, dir / "view.log", std::vector<std::string>{environment});
+        return std::make_unique<test::BackgroundVkray>("view " + args, dir / "view.log",
+                                                       std::vector<std::string>{environment});
     }
     // The exit status once the view has quit by itself (--frames, q).
     int exitStatus(test::BackgroundVkray& shown) {
@@ -93,7 +95,8 @@ TEST_F(View, FullProgressionIsTheRenderByteForByte) {
     RunResult shown = view(s + kSize + " --validation --frames 8 --screenshot " + path("view.png"));
     ASSERT_EQ(shown.status, 0) << shown.output;
     EXPECT_EQ(shown.output.find("validation:"), std::string::npos) << shown.output;
-    EXPECT_NE(shown.output.find("pass 8/8: block 1, sample 4 of 4"), std::string::npos) << shown.output;
+    EXPECT_NE(shown.output.find("pass 8/8: block 1, sample 4 of 4"), std::string::npos)
+        << shown.output;
     EXPECT_NE(shown.output.find("wrote " + path("view.png")), std::string::npos) << shown.output;
     ASSERT_EQ(render(s + kSize + " -o " + path("render.png")).status, 0);
     EXPECT_EQ(bytesOf(path("view.png")), bytesOf(path("render.png")));
@@ -104,21 +107,27 @@ TEST_F(View, EachBlockPassIsRenderBlock) {
     const std::string s = scene("s.sdl", kScene);
     for (const int pass : {1, 2, 3, 4}) {
         const int block = 16 >> (pass - 1);
-        RunResult shown = view(s + kSize + " --frames " + std::to_string(pass) + " --screenshot " + path("view.png"));
+        RunResult shown = view(s + kSize + " --frames " + std::to_string(pass) + " --screenshot " +
+                               path("view.png"));
         ASSERT_EQ(shown.status, 0) << shown.output;
-        ASSERT_EQ(render(s + " --size 64x48 --block " + std::to_string(block) + " -o " + path("render.png")).status, 0);
+        ASSERT_EQ(render(s + " --size 64x48 --block " + std::to_string(block) + " -o " +
+                         path("render.png"))
+                      .status,
+                  0);
         EXPECT_EQ(bytesOf(path("view.png")), bytesOf(path("render.png"))) << "pass " << pass;
     }
     // With one sample, the fifth and last pass is the plain render.
-    ASSERT_EQ(view(s + " --size 64x48 --spp 1 --frames 5 --screenshot " + path("view.png")).status, 0);
+    ASSERT_EQ(view(s + " --size 64x48 --spp 1 --frames 5 --screenshot " + path("view.png")).status,
+              0);
     ASSERT_EQ(render(s + " --size 64x48 -o " + path("render.png")).status, 0);
     EXPECT_EQ(bytesOf(path("view.png")), bytesOf(path("render.png")));
 }
 
 TEST_F(View, PrintedCameraRendersTheScreenshot) {
     const std::string s = scene("s.sdl", kScene);
-    RunResult shown = view(s + kSize + " --frames 8 --screenshot " + path("view.png") + " --events " +
-                           events("drag left 60 -25\nwait-pass\ndrag right 7 4\nwheel 2\nkey p\n"));
+    RunResult shown =
+        view(s + kSize + " --frames 8 --screenshot " + path("view.png") + " --events " +
+             events("drag left 60 -25\nwait-pass\ndrag right 7 4\nwheel 2\nkey p\n"));
     ASSERT_EQ(shown.status, 0) << shown.output;
     const std::string line = lineStarting(shown.output, "camera eye ");
     ASSERT_NE(line.find(" fov "), std::string::npos) << shown.output;
@@ -134,7 +143,9 @@ TEST_F(View, PrintedCameraRendersTheScreenshot) {
 TEST_F(View, ResetKeyGoesBackToTheScenesCamera) {
     const std::string s = scene("s.sdl", kScene);
     ASSERT_EQ(view(s + kSize + " --frames 8 --screenshot " + path("view.png") + " --events " +
-                   events("drag left 80 10\nwheel -3\nwait-pass\nkey r\n")).status, 0);
+                   events("drag left 80 10\nwheel -3\nwait-pass\nkey r\n"))
+                  .status,
+              0);
     ASSERT_EQ(render(s + kSize + " -o " + path("render.png")).status, 0);
     EXPECT_EQ(bytesOf(path("view.png")), bytesOf(path("render.png")));
 }
@@ -177,15 +188,17 @@ TEST_F(View, ShaderEditReloadsAndABrokenShaderNamesItsLine) {
     const fs::path shaders = dir / "shaders";
     fs::copy(VKRAY_SHADER_DIR, shaders, fs::copy_options::recursive);
     const std::string s = scene("s.sdl", kScene);
-    auto shown = viewInBackground(s + kSize + " --shader-dir " + shaders.string() + " --frames 8 --screenshot " +
-                                  path("view.png") + " --events " + events("wait-reload\nwait-reload\n"));
+    auto shown = viewInBackground(s + kSize + " --shader-dir " + shaders.string() +
+                                  " --frames 8 --screenshot " + path("view.png") + " --events " +
+                                  events("wait-reload\nwait-reload\n"));
     ASSERT_TRUE(shown->waitFor("waiting for a reload")) << shown->output();
     const fs::path plane = shaders / "shapes" / "plane.glsl";
     const std::string original = bytesOf(plane.string());
     save(plane.string(), "this is not GLSL\n" + original);
     ASSERT_TRUE(shown->waitFor("waiting for a reload", 2)) << shown->output();
     ASSERT_TRUE(shown->waitFor("plane.glsl:1")) << shown->output();
-    EXPECT_NE(shown->output().find("kept the last good image"), std::string::npos) << shown->output();
+    EXPECT_NE(shown->output().find("kept the last good image"), std::string::npos)
+        << shown->output();
     save(plane.string(), original);
     ASSERT_TRUE(shown->waitFor("wrote " + path("view.png"))) << shown->output();
     EXPECT_EQ(exitStatus(*shown), 0) << shown->output();
@@ -203,7 +216,8 @@ struct SeenWindow {
 SeenWindow windowOnScreen(const std::string& display, int width, int height) {
     Display* x = XOpenDisplay(display.c_str());
     if (!x) return {};
-    XSetErrorHandler([](Display*, XErrorEvent*) { return 0; });  // a window not yet mapped: try again
+    XSetErrorHandler(
+        [](Display*, XErrorEvent*) { return 0; });  // a window not yet mapped: try again
     Window root = DefaultRootWindow(x), rootBack, parent, *children = nullptr, found = 0;
     unsigned count = 0;
     XQueryTree(x, root, &rootBack, &parent, &children, &count);
@@ -220,11 +234,16 @@ SeenWindow windowOnScreen(const std::string& display, int width, int height) {
     }
     if (children) XFree(children);
     std::vector<unsigned char>& rgb = seen.rgb;
-    XImage* image = found ? XGetImage(x, found, 0, 0, unsigned(width), unsigned(height), AllPlanes, ZPixmap) : nullptr;
+    XImage* image =
+        found ? XGetImage(x, found, 0, 0, unsigned(width), unsigned(height), AllPlanes, ZPixmap)
+              : nullptr;
     if (image) {
         const auto channel = [](unsigned long pixel, unsigned long mask) {
             int shift = 0;
-            while (mask && !(mask & 1)) { mask >>= 1; ++shift; }
+            while (mask && !(mask & 1)) {
+                mask >>= 1;
+                ++shift;
+            }
             return (unsigned char)((pixel >> shift) & mask);
         };
         for (int y = 0; y < height; ++y)
@@ -248,8 +267,9 @@ TEST_F(View, TheWindowShowsThePicture) {
     const Image expected = readImage(path("render.png"));
     std::vector<unsigned char> want;
     for (const float v : expected.pixels) want.push_back((unsigned char)std::lround(v * 255));
-    auto shown = viewInBackground(s + kSize + " --events " + events(
-        "wait-pass\nwait-pass\nwait-pass\nwait-pass\nwait-pass\nwait-pass\nwait-pass\nwait-pass\nwait-reload\n"));
+    auto shown = viewInBackground(s + kSize + " --events " +
+                                  events("wait-pass\nwait-pass\nwait-pass\nwait-pass\nwait-"
+                                         "pass\nwait-pass\nwait-pass\nwait-pass\nwait-reload\n"));
     ASSERT_TRUE(shown->waitFor("waiting for a reload")) << shown->output();
     ASSERT_NE(shown->output().find("pass 8/8"), std::string::npos) << shown->output();
     // The X server draws what it was sent in its own time: look until it is there.
@@ -260,7 +280,8 @@ TEST_F(View, TheWindowShowsThePicture) {
     }
     EXPECT_TRUE(seen.rgb == want) << "the window does not show the picture";
     // The title: the scene, the pass, the speed and the device.
-    for (const char* part : {"vkray view s.sdl", "pass 8/8 block 1, sample 4 of 4", "Mrays/s", "llvmpipe"})
+    for (const char* part :
+         {"vkray view s.sdl", "pass 8/8 block 1, sample 4 of 4", "Mrays/s", "llvmpipe"})
         EXPECT_NE(seen.title.find(part), std::string::npos) << part << " in " << seen.title;
     EXPECT_EQ(shown->stop(SIGINT), 0) << shown->output();
 }
@@ -305,8 +326,14 @@ TEST_F(View, TheWindowsOwnMouseAndKeysMoveAndQuit) {
         e.xbutton.y = py;
         e.xbutton.same_screen = True;
     };
-    send(ButtonPress, ButtonPressMask, [&](XEvent& e) { mouse(e, 10, 20); e.xbutton.button = Button1; });
-    send(MotionNotify, PointerMotionMask, [&](XEvent& e) { mouse(e, 40, 25); e.xmotion.state = Button1Mask; });
+    send(ButtonPress, ButtonPressMask, [&](XEvent& e) {
+        mouse(e, 10, 20);
+        e.xbutton.button = Button1;
+    });
+    send(MotionNotify, PointerMotionMask, [&](XEvent& e) {
+        mouse(e, 40, 25);
+        e.xmotion.state = Button1Mask;
+    });
     send(ButtonRelease, ButtonReleaseMask, [&](XEvent& e) {
         mouse(e, 40, 25);
         e.xbutton.button = Button1;
@@ -328,8 +355,8 @@ TEST_F(View, TheWindowsOwnMouseAndKeysMoveAndQuit) {
 
 TEST_F(View, CpuReferenceViewIsRenderCpu) {
     const std::string s = scene("s.sdl", kScene);
-    RunResult shown = view(s + kSize + " --frames 8 --screenshot " + path("view.png") + " --events " +
-                           events("key c\nwait-cpu\n"));
+    RunResult shown = view(s + kSize + " --frames 8 --screenshot " + path("view.png") +
+                           " --events " + events("key c\nwait-cpu\n"));
     ASSERT_EQ(shown.status, 0) << shown.output;
     EXPECT_NE(shown.output.find("cpu reference ready"), std::string::npos) << shown.output;
     ASSERT_EQ(render(s + kSize + " --cpu -o " + path("cpu.png")).status, 0);
@@ -340,15 +367,16 @@ TEST_F(View, DifferenceCountsThePixelsCheckCounts) {
     // A threshold low enough that float against double shows: the count is
     // `render --check`'s, for the same threshold.
     const std::string s = scene("s.sdl", kScene);
-    RunResult shown = view(s + kSize + " --validation --fail 1e-7 --frames 8 --screenshot " + path("diff.png") +
-                           " --events " + events("key d\nwait-cpu\n"));
+    RunResult shown = view(s + kSize + " --validation --fail 1e-7 --frames 8 --screenshot " +
+                           path("diff.png") + " --events " + events("key d\nwait-cpu\n"));
     ASSERT_EQ(shown.status, 0) << shown.output;
     // The last count, the progression complete (no note after it).
     const std::string line = lineStarting(shown.output, "difference: ");
     ASSERT_NE(line.find(" of 3072 pixels with error > 1e-07"), std::string::npos) << shown.output;
     ASSERT_EQ(line.find("not complete"), std::string::npos) << shown.output;
     const long viewCount = numberAfter(line, "difference: ");
-    RunResult check = render(s + kSize + " --check --fail 1e-7 --failpercent 100 -o " + path("gpu.png"));
+    RunResult check =
+        render(s + kSize + " --check --fail 1e-7 --failpercent 100 -o " + path("gpu.png"));
     ASSERT_EQ(check.status, 0) << check.output;
     const long checkCount = numberAfter(check.output, "over threshold  ");
     ASSERT_NE(check.output.find(" of 3072 pixels"), std::string::npos) << check.output;
@@ -359,7 +387,8 @@ TEST_F(View, DifferenceCountsThePixelsCheckCounts) {
     int hot = 0;
     for (size_t i = 0; i < heat.pixels.size(); i += 3) {
         const bool red = heat.pixels[i] == 1.0f && heat.pixels[i + 2] == 0.0f;
-        const bool grey = heat.pixels[i] == heat.pixels[i + 1] && heat.pixels[i + 1] == heat.pixels[i + 2];
+        const bool grey =
+            heat.pixels[i] == heat.pixels[i + 1] && heat.pixels[i + 1] == heat.pixels[i + 2];
         EXPECT_TRUE(red || grey) << "pixel " << i / 3;
         hot += red && !grey;
     }
@@ -369,12 +398,13 @@ TEST_F(View, DifferenceCountsThePixelsCheckCounts) {
 TEST_F(View, AovViewsShowTheRendersAovs) {
     const std::string s = scene("s.sdl", kScene);
     ASSERT_EQ(render(s + kSize + " --aov " + path("aov") + " -o " + path("render.png")).status, 0);
-    const Image depth = readImage(path("aov.depth.pfm")), normal = readImage(path("aov.normal.pfm")),
-                ids = readImage(path("aov.id.pfm"));
+    const Image depth = readImage(path("aov.depth.pfm")),
+                normal = readImage(path("aov.normal.pfm")), ids = readImage(path("aov.id.pfm"));
     std::map<std::string, Image> shown;
     for (const char* key : {"2", "3", "4"}) {
-        RunResult run = view(s + kSize + " --frames 8 --screenshot " + path(std::string("view") + key + ".png") +
-                             " --events " + events(std::string("key ") + key + "\n"));
+        RunResult run = view(s + kSize + " --frames 8 --screenshot " +
+                             path(std::string("view") + key + ".png") + " --events " +
+                             events(std::string("key ") + key + "\n"));
         ASSERT_EQ(run.status, 0) << run.output;
         shown[key] = readImage(path(std::string("view") + key + ".png"));
     }
@@ -387,19 +417,29 @@ TEST_F(View, AovViewsShowTheRendersAovs) {
     std::map<float, std::vector<float>> colourOfId;
     for (size_t i = 0; i < pixels; ++i) {
         const float d = depth.pixels[i];
-        const float t = std::isfinite(d) ? (1 / d - 1 / farthest) / (1 / nearest - 1 / farthest) : -1;
-        const float expectedDepth[3] = {std::clamp(2 * t - 1, 0.0f, 1.0f), std::clamp(1 - std::abs(2 * t - 1), 0.0f, 1.0f),
+        const float t =
+            std::isfinite(d) ? (1 / d - 1 / farthest) / (1 / nearest - 1 / farthest) : -1;
+        const float expectedDepth[3] = {std::clamp(2 * t - 1, 0.0f, 1.0f),
+                                        std::clamp(1 - std::abs(2 * t - 1), 0.0f, 1.0f),
                                         std::clamp(1 - 2 * t, 0.0f, 1.0f)};
         for (int c = 0; c < 3; ++c) {
             const float want = std::isfinite(d) ? expectedDepth[c] : 0.0f;
-            ASSERT_NEAR(shown["2"].pixels[3 * i + size_t(c)], want, 1.5 / 255) << "depth view, pixel " << i;
-            const float n = ids.pixels[i] < 0 ? 0.0f : 0.5f + 0.5f * normal.pixels[3 * i + size_t(c)];
-            ASSERT_NEAR(shown["3"].pixels[3 * i + size_t(c)], n, 1.0 / 255) << "normal view, pixel " << i;
+            ASSERT_NEAR(shown["2"].pixels[3 * i + size_t(c)], want, 1.5 / 255)
+                << "depth view, pixel " << i;
+            const float n =
+                ids.pixels[i] < 0 ? 0.0f : 0.5f + 0.5f * normal.pixels[3 * i + size_t(c)];
+            ASSERT_NEAR(shown["3"].pixels[3 * i + size_t(c)], n, 1.0 / 255)
+                << "normal view, pixel " << i;
         }
-        const std::vector<float> colour(shown["4"].pixels.begin() + long(3 * i), shown["4"].pixels.begin() + long(3 * i + 3));
-        if (ids.pixels[i] < 0) EXPECT_EQ(colour, std::vector<float>(3, 0.0f)) << "background, pixel " << i;
-        else if (!colourOfId.count(ids.pixels[i])) colourOfId[ids.pixels[i]] = colour;
-        else EXPECT_EQ(colour, colourOfId[ids.pixels[i]]) << "id " << ids.pixels[i] << ", pixel " << i;
+        const std::vector<float> colour(shown["4"].pixels.begin() + long(3 * i),
+                                        shown["4"].pixels.begin() + long(3 * i + 3));
+        if (ids.pixels[i] < 0)
+            EXPECT_EQ(colour, std::vector<float>(3, 0.0f)) << "background, pixel " << i;
+        else if (!colourOfId.count(ids.pixels[i]))
+            colourOfId[ids.pixels[i]] = colour;
+        else
+            EXPECT_EQ(colour, colourOfId[ids.pixels[i]])
+                << "id " << ids.pixels[i] << ", pixel " << i;
     }
     ASSERT_EQ(colourOfId.size(), 2u);  // the sphere and the floor
     EXPECT_NE(colourOfId.begin()->second, colourOfId.rbegin()->second);
@@ -407,8 +447,9 @@ TEST_F(View, AovViewsShowTheRendersAovs) {
 
 TEST_F(View, SaveKeyWritesAWholePngAndSaysWhere) {
     const std::string s = scene("s.sdl", kScene);
-    RunResult shown = test::runShell("cd " + dir.string() + " && env " + environment + " " + VKRAY_BINARY +
-                                     " view s.sdl" + kSize + " --frames 8 --events " + events("key s\nwait-pass\nkey s\n"));
+    RunResult shown = test::runShell("cd " + dir.string() + " && env " + environment + " " +
+                                     VKRAY_BINARY + " view s.sdl" + kSize +
+                                     " --frames 8 --events " + events("key s\nwait-pass\nkey s\n"));
     ASSERT_EQ(shown.status, 0) << shown.output;
     EXPECT_NE(shown.output.find("wrote s-1.png"), std::string::npos) << shown.output;
     EXPECT_NE(shown.output.find("wrote s-2.png"), std::string::npos) << shown.output;
@@ -422,8 +463,8 @@ using ViewWithoutDisplay = test::CliTest;
 
 TEST_F(ViewWithoutDisplay, NoDisplayExitsOneNamingThemAndRenderWatch) {
     const std::string s = scene("s.sdl", kScene);
-    RunResult run = test::runShell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(VKRAY_BINARY) +
-                                   " view " + s + " --frames 1");
+    RunResult run = test::runShell("env -u DISPLAY -u WAYLAND_DISPLAY " +
+                                   std::string(VKRAY_BINARY) + " view " + s + " --frames 1");
     EXPECT_EQ(run.status, 1) << run.output;
     for (const char* word : {"DISPLAY", "WAYLAND_DISPLAY", "vkray render --watch"})
         EXPECT_NE(run.output.find(word), std::string::npos) << word << " in " << run.output;

@@ -12,8 +12,12 @@ namespace vkray::dist {
 namespace {
 
 TEST(Bytes, NumbersAndStringsComeBackBitForBit) {
-    const double values[] = {0.1, -0.0, 1e-310, std::numeric_limits<double>::infinity(),
-                             std::numeric_limits<double>::quiet_NaN(), 6.02214076e23};
+    const double values[] = {0.1,
+                             -0.0,
+                             1e-310,
+                             std::numeric_limits<double>::infinity(),
+                             std::numeric_limits<double>::quiet_NaN(),
+                             6.02214076e23};
     const std::string text("tab\there, a NUL \0 and more", 26);
     ByteWriter writer;
     for (double v : values) writer << v;

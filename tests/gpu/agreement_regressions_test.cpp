@@ -39,18 +39,20 @@ TEST(AgreementRegressions, EyeInsideALoneSphereLitFromOutside) {
     // The variant once left the shadow code out for a lone sphere, as if it
     // could not shadow itself; from inside, the light outside is behind the
     // far wall for every point that faces it: 57 % of the pixels were lit.
-    const Renders r = renderBoth("camera eye 0 0 0 look -1 0.2 0.1 up 0 1 0 fov 70\n"
-                                 "light 10 2 1 1 1 1\ndiffuse 0.8 0.7 0.6\n"
-                                 "push scale 3 3 3 sphere pop\n",
-                                 {64, 48});
+    const Renders r = renderBoth(
+        "camera eye 0 0 0 look -1 0.2 0.1 up 0 1 0 fov 70\n"
+        "light 10 2 1 1 1 1\ndiffuse 0.8 0.7 0.6\n"
+        "push scale 3 3 3 sphere pop\n",
+        {64, 48});
     expectAgreement(r);
 }
 
 TEST(AgreementRegressions, EyeInsideALoneCubeLitFromOutside) {
-    const Renders r = renderBoth("camera eye 0.2 0.1 0 look 1 0.3 0.2 up 0 1 0 fov 70\n"
-                                 "light -9 5 2 1 1 1\ndiffuse 0.6 0.7 0.8\n"
-                                 "push rotate 20 0 1 0 scale 2 3 2 cube pop\n",
-                                 {64, 48});
+    const Renders r = renderBoth(
+        "camera eye 0.2 0.1 0 look 1 0.3 0.2 up 0 1 0 fov 70\n"
+        "light -9 5 2 1 1 1\ndiffuse 0.6 0.7 0.8\n"
+        "push rotate 20 0 1 0 scale 2 3 2 cube pop\n",
+        {64, 48});
     expectAgreement(r);
 }
 
@@ -60,9 +62,10 @@ TEST(AgreementRegressions, CoincidentSurfacesUnderTheObjectBvhGoToTheLowerIndex)
     // lower index wins, as in the reference, whatever order the BVH visits
     // them: the walk keeps a box whose object would tie (it once culled
     // boxes at the closest t, not at the t a tie still accepts).
-    std::string sdl = "camera eye 0 0 1000 look 0 0 0 up 0 1 0 fov 2\nlight 500 800 900 1 1 1\n"
-                      "diffuse 0.8 0.2 0.2 def ball { push translate 0.3 0.2 0 scale 7 7 7 "
-                      "sphere pop } use ball\n";
+    std::string sdl =
+        "camera eye 0 0 1000 look 0 0 0 up 0 1 0 fov 2\nlight 500 800 900 1 1 1\n"
+        "diffuse 0.8 0.2 0.2 def ball { push translate 0.3 0.2 0 scale 7 7 7 "
+        "sphere pop } use ball\n";
     for (int i = 0; i < 20; ++i)
         sdl += "diffuse 0.2 0.8 0.2 push translate " + std::to_string(4 * (i % 5) - 8) + " " +
                std::to_string(5 * (i / 5) - 8) + " -40 scale 2 2 2 sphere pop\n";
@@ -98,12 +101,13 @@ TEST(AgreementRegressions, HourglassTaperMinusHalf) {
 TEST(AgreementRegressions, HourglassInCsgHasTwoSpans) {
     // Seen from below, less the box z <= 0.45: the waist's gap shows the
     // upper nappe, not a cut face across the whole hourglass.
-    expectAgreement(renderBoth("camera eye 3 -1.5 -2 look 0 0 0.5 up 0 0 1 fov 45\n"
-                               "light 4 -3 -6 1 1 1\nlight -3 4 2 0.5 0.5 0.5\n"
-                               "globalAmbient 0.2 0.2 0.2 ambient 0.2 0.2 0.2 diffuse 0.8 0.5 0.3\n"
-                               "difference taperedCylinder -1\n"
-                               "  push translate 0 0 -0.55 scale 2 2 1 cube pop\n",
-                               {96, 72}));
+    expectAgreement(
+        renderBoth("camera eye 3 -1.5 -2 look 0 0 0.5 up 0 0 1 fov 45\n"
+                   "light 4 -3 -6 1 1 1\nlight -3 4 2 0.5 0.5 0.5\n"
+                   "globalAmbient 0.2 0.2 0.2 ambient 0.2 0.2 0.2 diffuse 0.8 0.5 0.3\n"
+                   "difference taperedCylinder -1\n"
+                   "  push translate 0 0 -0.55 scale 2 2 1 cube pop\n",
+                   {96, 72}));
 }
 
 // Wood rings of width 1/k once had a boundary at radius 1, on the cylinder's
@@ -131,7 +135,8 @@ void expectDifftestSceneAgrees(const std::string& name, const RenderSettings& se
     SCOPED_TRACE(name);
     const Scene scene = loadScene(test::kDataDir + "/difftest/" + name, {}, nullptr);
     const CameraBasis camera = makeCameraBasis(*scene.camera, settings.width, settings.height);
-    gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir, .precision = precision});
+    gpu::GpuTracer tracer(test::gpuContext(),
+                          {.shaderDirectory = test::kShaderDir, .precision = precision});
     const Frame gpu = tracer.render(scene, camera, settings);
     const Frame cpu = reference::render(scene, camera, settings);
     CompareResult result = compareImages(colorImage(gpu), colorImage(cpu), {0.02, 0.1});
@@ -141,7 +146,8 @@ void expectDifftestSceneAgrees(const std::string& name, const RenderSettings& se
 }
 
 TEST(AgreementRegressions, AReflectionPassingACornerMissesItAsTheReferencesDoes) {
-    expectDifftestSceneAgrees("reflected_corner.sdl", {32, 24, 1, 16, 3904793813u}, Precision::Robust);
+    expectDifftestSceneAgrees("reflected_corner.sdl", {32, 24, 1, 16, 3904793813u},
+                              Precision::Robust);
 }
 
 TEST(AgreementRegressions, MirrorsNineLevelsDeep) {

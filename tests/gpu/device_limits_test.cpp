@@ -19,7 +19,7 @@ DeviceLimits smallDevice() {
     limits.maxUniformBufferRange = 16384;
     limits.maxTexelBufferElements = 65536;  // Vulkan's least
     limits.maxMemoryAllocationSize = 1 << 30;
-    limits.memoryHeapBytes = 8 << 20;        // 8 MiB
+    limits.memoryHeapBytes = 8 << 20;  // 8 MiB
     limits.maxWorkgroupCount[0] = limits.maxWorkgroupCount[1] = 65535;
     return limits;
 }
@@ -49,8 +49,10 @@ TEST(DeviceLimits, TexelBufferBeyondItsElementsNamesCountLimitAndAdvice) {
     const std::string message = refusal({beyond}, limits);
     EXPECT_NE(message.find("10923 triangles need 65538 texels"), std::string::npos) << message;
     EXPECT_NE(message.find("at most 65536 (maxTexelBufferElements), room for 10922 triangles"),
-              std::string::npos) << message;
-    EXPECT_NE(message.find("Use smaller meshes, or render with --cpu"), std::string::npos) << message;
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("Use smaller meshes, or render with --cpu"), std::string::npos)
+        << message;
 }
 
 TEST(DeviceLimits, StorageBufferBeyondItsRangeNamesCountLimitAndAdvice) {

@@ -78,7 +78,8 @@ TEST(GpuShading, ObjectBvhFeelersFindTheSameOccluders) {
     // Twelve small spheres (an object BVH) far from the feeler, and one on it.
     std::string spheres;
     for (int i = 0; i < 12; ++i)
-        spheres += "push translate " + std::to_string(-20 - 3 * i) + " 5 5 scale 0.5 0.5 0.5 sphere pop\n";
+        spheres +=
+            "push translate " + std::to_string(-20 - 3 * i) + " 5 5 scale 0.5 0.5 0.5 sphere pop\n";
     expectColor(floorOrigin(spheres), glm::dvec3(0.7));
     expectColor(floorOrigin(spheres + "transparency 0.5 push translate 0 0 5 sphere pop\n"),
                 glm::dvec3(0.2 + 0.5 * 0.5));
@@ -99,18 +100,21 @@ TEST(GpuShading, AMirrorShowsTheWallTimesItsReflectivity) {
     EXPECT_EQ(f.id[0], 0);
     EXPECT_NEAR(f.depth[0], 5, 1e-5);
     // Reflectivity at or below minReflectivity, or no recursion: no reflection.
-    expectColor(traceOne(mirrorUnderWall("maxRecursionDepth 0"), {0, 0, 5}, {0, 0, 0}), glm::dvec3(0));
-    expectColor(traceOne(mirrorUnderWall("minReflectivity 0.8"), {0, 0, 5}, {0, 0, 0}), glm::dvec3(0));
+    expectColor(traceOne(mirrorUnderWall("maxRecursionDepth 0"), {0, 0, 5}, {0, 0, 0}),
+                glm::dvec3(0));
+    expectColor(traceOne(mirrorUnderWall("minReflectivity 0.8"), {0, 0, 5}, {0, 0, 0}),
+                glm::dvec3(0));
 }
 
 TEST(GpuShading, FacingMirrorsStopAtMaxRecursionDepth) {
     // Mirrors z = 0 and z = 10, each emissive 0.4 and reflectivity 0.5: the
     // ray bounces between them, level i adding 0.4 * 0.5^i, down to level D.
     for (int depth : {0, 1, 3, 8}) {
-        const std::string sdl = "maxRecursionDepth " + std::to_string(depth) +
-                                " minReflectivity 0.3 background 1 1 1\n"
-                                "ambient 0 0 0 diffuse 0 0 0 emissive 0.4 0.4 0.4 reflectivity 0.5\n"
-                                "square push translate 0 0 10 square pop\n";
+        const std::string sdl =
+            "maxRecursionDepth " + std::to_string(depth) +
+            " minReflectivity 0.3 background 1 1 1\n"
+            "ambient 0 0 0 diffuse 0 0 0 emissive 0.4 0.4 0.4 reflectivity 0.5\n"
+            "square push translate 0 0 10 square pop\n";
         double expected = 0;
         for (int level = 0; level <= depth; ++level) expected += 0.4 * std::pow(0.5, level);
         SCOPED_TRACE("maxRecursionDepth " + std::to_string(depth));
@@ -124,7 +128,8 @@ TEST(GpuShading, FacingMirrorsStopAtMaxRecursionDepth) {
 // black if it lands a cell off.
 std::string checkeredPlane(double planeZ) {
     return "globalAmbient 1 1 1 background 0 0 0\n"
-           "push translate 0 0 " + std::to_string(planeZ) +
+           "push translate 0 0 " +
+           std::to_string(planeZ) +
            " ambient 1 1 1 diffuse 0 0 0 texture 1 parameters 4 0.1 0 0 0 plane pop texture 0\n";
 }
 
@@ -139,8 +144,8 @@ TEST(GpuShading, RefractionThroughASlabFollowsSnell) {
     // reached at x0 + 3 + 0.377964 + 1.5 (unbent: x0 + 5.5, a cell further
     // than the 0.05 the test allows).
     const double x0 = -(3 + 0.377964 + 1.5);
-    const std::string sdl = checkeredPlane(-2) + "maxRecursionDepth 3\n" + kGlass +
-                            "push scale 20 20 0.5 cube pop\n";
+    const std::string sdl =
+        checkeredPlane(-2) + "maxRecursionDepth 3\n" + kGlass + "push scale 20 20 0.5 cube pop\n";
     expectColor(traceOne(sdl, {x0, 0, 3.5}, {x0 + 1, 0, 2.5}), glm::dvec3(1), 1e-6);
     // Landing 0.1 further along sees a black cell: the test can fail.
     expectColor(traceOne(sdl, {x0 + 0.1, 0, 3.5}, {x0 + 1.1, 0, 2.5}), glm::dvec3(0), 1e-6);
@@ -190,13 +195,13 @@ TEST(GpuShading, TextureColourAtKnownPoints) {
     expectColor(traceOne(sphere, 5.0 * a, {0, 0, 0}, {0, 0, 1}), texel(4, 2));
     expectColor(traceOne(sphere, 5.0 * b, {0, 0, 0}, {0, 0, 1}), texel(6, 1));
     // Square at generic (-0.9, 0.9): u = 0.05, v = 0.95 -> the top-left texel.
-    expectColor(traceOne(textured("texture 3 parameters 1 0", "square"), {-0.9, 0.9, 5},
-                         {-0.9, 0.9, 0}),
-                texel(0, 0));
+    expectColor(
+        traceOne(textured("texture 3 parameters 1 0", "square"), {-0.9, 0.9, 5}, {-0.9, 0.9, 0}),
+        texel(0, 0));
     // Cube face z = 1 at (0.3, -0.2): u = 0.65, v = 0.4 -> texel (5, 2).
-    expectColor(traceOne(textured("texture 3 parameters 1 0", "cube"), {0.3, -0.2, 5},
-                         {0.3, -0.2, 0}),
-                texel(5, 2));
+    expectColor(
+        traceOne(textured("texture 3 parameters 1 0", "cube"), {0.3, -0.2, 5}, {0.3, -0.2, 0}),
+        texel(5, 2));
     // Checkerboard of size 0.5 on the cube's face z = 1: at x = 0 the cells
     // add up to 0 + 0 + 2 (even: white), at x = 0.6 to 1 + 0 + 2 (odd: the colour).
     const std::string checker = textured("texture 1 parameters 4 0.5 0.9 0.2 0.1", "cube");

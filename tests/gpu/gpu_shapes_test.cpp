@@ -4,9 +4,9 @@
 #include "support/gpu_fixture.h"
 
 #include "render/camera.h"
-#include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
+#include "util/error.h"
 
 #include <gtest/gtest.h>
 
@@ -16,8 +16,7 @@ namespace vkray {
 namespace {
 
 // The scene from SDL text, with its meshes built; then the ray eye -> look.
-Frame traceOne(const std::string& sdl, glm::dvec3 eye, glm::dvec3 look,
-               glm::dvec3 up = {0, 0, 1}) {
+Frame traceOne(const std::string& sdl, glm::dvec3 eye, glm::dvec3 look, glm::dvec3 up = {0, 0, 1}) {
     return test::traceOneRay(sdl, "t.sdl", eye, look, up);
 }
 
@@ -200,7 +199,8 @@ TEST(GpuShapes, ObjectBvhFindsTheSameObjectsAsTestingEach) {
     for (int i = 0; i < 8; ++i) {
         const glm::dvec3 centre(3 * i, 0, 0);
         const Frame withBvh = traceOne(row, centre + glm::dvec3(0, 0, 10), centre, {0, 1, 0});
-        const Frame without = traceOne(firstEight, centre + glm::dvec3(0, 0, 10), centre, {0, 1, 0});
+        const Frame without =
+            traceOne(firstEight, centre + glm::dvec3(0, 0, 10), centre, {0, 1, 0});
         EXPECT_EQ(withBvh.id[0], i);
         EXPECT_EQ(without.id[0], i);
         EXPECT_EQ(withBvh.depth[0], without.depth[0]);

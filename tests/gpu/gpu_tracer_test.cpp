@@ -4,9 +4,9 @@
 
 #include "render/camera.h"
 
+#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
-#include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
@@ -98,7 +98,8 @@ TEST(GpuTracer, EyeInsideSphereHitsTheFarSideFacingInward) {
 TEST(GpuTracer, ClosestOfSeveralObjectsWins) {
     Scene scene;
     for (double z : {-4.0, 2.0, -1.0})
-        scene.objects.push_back(placed(ShapeType::Sphere, glm::translate(glm::dmat4(1.0), {0, 0, z})));
+        scene.objects.push_back(
+            placed(ShapeType::Sphere, glm::translate(glm::dmat4(1.0), {0, 0, z})));
     Frame f = traceOne(scene, {0, 0, 10}, {0, 0, 0}, {0, 1, 0});
     EXPECT_EQ(f.id[0], 1);
     EXPECT_NEAR(f.depth[0], 7.0, 7 * kDepthTolerance);
@@ -143,7 +144,8 @@ TEST(GpuTracer, SamplesTracedOneAtATimeSumToTheWholeRender) {
     Scene scene = parseSdl(
         "camera eye 0 1 5 look 0 0 0 up 0 1 0 fov 40\nlight 3 4 5 1 1 1\n"
         "reflectivity 0.5 sphere\n"
-        "reflectivity 0 transparency 0.8 speedOfLight 0.7 translate 1.2 0.3 1 scale 0.4 0.4 0.4 sphere\n",
+        "reflectivity 0 transparency 0.8 speedOfLight 0.7 translate 1.2 0.3 1 scale 0.4 0.4 0.4 "
+        "sphere\n",
         "samples.sdl", {});
     loadSceneGeometry(scene, false, nullptr);
     RenderSettings all{24, 18, 1, 5, 7};
@@ -157,8 +159,10 @@ TEST(GpuTracer, SamplesTracedOneAtATimeSumToTheWholeRender) {
         const Frame part = test::renderOnGpu(scene, camera, one);
         for (size_t i = 0; i < part.pixelCount(); ++i) {
             sum[i] = k == 0 ? part.color[i] : sum[i] + part.color[i];
-            if (k == 0) ASSERT_EQ(part.id[i], whole.id[i]);
-            else ASSERT_EQ(part.id[i], -1) << "sample " << k << " gave AOVs";
+            if (k == 0)
+                ASSERT_EQ(part.id[i], whole.id[i]);
+            else
+                ASSERT_EQ(part.id[i], -1) << "sample " << k << " gave AOVs";
         }
     }
     for (size_t i = 0; i < whole.pixelCount(); ++i) {

@@ -25,9 +25,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // The bounds this project states (docs/gpu-vs-reference.md):
-constexpr double kMinIdAgreement = 0.999;       // object ids agree on >= 99.9 % of pixels
-constexpr double kMaxColorRmse = 0.01;          // colour RMSE over all pixels
-constexpr double kMaxAgreeingColorError = 1e-3; // colour error where the ids agree ...
+constexpr double kMinIdAgreement = 0.999;        // object ids agree on >= 99.9 % of pixels
+constexpr double kMaxColorRmse = 0.01;           // colour RMSE over all pixels
+constexpr double kMaxAgreeingColorError = 1e-3;  // colour error where the ids agree ...
 // ... on all but this fraction of the pixels. Whitted shading follows shadow
 // feelers and reflected and refracted rays from every hit: one that grazes
 // an edge or lands on a texture's cell border can go the other way in float
@@ -41,7 +41,8 @@ constexpr double kMaxDisagreeingFraction = 0.005;  // of all the image's pixels
 
 struct Agreement {
     double idAgreement, rmse, maxErrorWhereIdsAgree;
-    double disagreeingFraction;  // pixels with the same id and an error above kMaxAgreeingColorError
+    double
+        disagreeingFraction;  // pixels with the same id and an error above kMaxAgreeingColorError
 };
 
 Agreement compareFrames(const Frame& gpu, const Frame& cpu) {
@@ -70,10 +71,11 @@ void expectAgreement(const Agreement& a) {
 }
 
 void printAgreement(const std::string& what, const Agreement& a) {
-    std::printf("%-36s ids agree %.4f %%, colour RMSE %.2e, max error where ids agree %.2e "
-                "(%.3f %% of pixels above %.0e)\n",
-                what.c_str(), 100 * a.idAgreement, a.rmse, a.maxErrorWhereIdsAgree,
-                100 * a.disagreeingFraction, kMaxAgreeingColorError);
+    std::printf(
+        "%-36s ids agree %.4f %%, colour RMSE %.2e, max error where ids agree %.2e "
+        "(%.3f %% of pixels above %.0e)\n",
+        what.c_str(), 100 * a.idAgreement, a.rmse, a.maxErrorWhereIdsAgree,
+        100 * a.disagreeingFraction, kMaxAgreeingColorError);
 }
 
 struct SceneFile {
@@ -102,8 +104,7 @@ TEST_P(GpuVsReference, AgreeWithinStatedBounds) {
         const Frame gpu = test::renderOnGpu(scene, basis, settings);
         const Frame cpu = reference::render(scene, basis, settings);
         const Agreement a = compareFrames(gpu, cpu);
-        printAgreement(fs::path(path).filename().string() + " block " +
-                           std::to_string(block) + ":",
+        printAgreement(fs::path(path).filename().string() + " block " + std::to_string(block) + ":",
                        a);
         expectAgreement(a);
         // Depth where both hit the same object: float against double.

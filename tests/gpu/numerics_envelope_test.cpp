@@ -87,7 +87,8 @@ TEST(NumericsEnvelope, CheckeredSphereAtRobustsTextureLimitAgrees) {
 // (ids as render --check asks: 99.9 %), fp64 at 1e-5 (and beyond) exactly.
 TEST(NumericsEnvelope, OutermostSquashAtRobustsLimitAgrees) {
     for (const char* shape : kSquashedShapes)
-        expectAgreement(std::string("squash_outer_1e-4_") + shape + ".sdl", Precision::Robust, 0.001);
+        expectAgreement(std::string("squash_outer_1e-4_") + shape + ".sdl", Precision::Robust,
+                        0.001);
 }
 
 TEST(NumericsEnvelope, OutermostSquashOf1e5AgreesInFp64) {

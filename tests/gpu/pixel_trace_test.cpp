@@ -27,12 +27,13 @@ void expectNear(const glm::dvec3& a, const glm::dvec3& b, double tolerance) {
 TEST(PixelTrace, BothSidesRecordTheSameStepsOnAnAnalyticRay) {
     // Eye (0, 0, 5) looking down -z at a unit sphere moved to (0, 0, -2) and a
     // plane z = 0 moved to z = -10: the centre ray meets the sphere at t = 6.
-    const Scene scene = parseSdl("camera eye 0 0 5 look 0 0 0 up 0 1 0 fov 60\n"
-                                 "light 0 0 10 1 1 1 light 0 10 0 0.5 0.5 0.5\n"
-                                 "push translate 0 0 -10 plane pop\n"
-                                 "diffuse 0.5 0.25 0.125 emissive 0.1 0 0\n"
-                                 "push translate 0 0 -2 sphere pop\n",
-                                 "t.sdl", {});
+    const Scene scene = parseSdl(
+        "camera eye 0 0 5 look 0 0 0 up 0 1 0 fov 60\n"
+        "light 0 0 10 1 1 1 light 0 10 0 0.5 0.5 0.5\n"
+        "push translate 0 0 -10 plane pop\n"
+        "diffuse 0.5 0.25 0.125 emissive 0.1 0 0\n"
+        "push translate 0 0 -2 sphere pop\n",
+        "t.sdl", {});
     const RenderSettings settings{5, 5, 1};
     const CameraBasis camera = makeCameraBasis(*scene.camera, 5, 5);
     const PixelTrace gpu = gpuTrace(scene, camera, settings, 2, 2);
@@ -64,15 +65,17 @@ TEST(PixelTrace, BothSidesRecordTheSameStepsOnAnAnalyticRay) {
 TEST(PixelTrace, TAndTheNormalAtTheModesPrecisionAndEachFeelersVerdict) {
     // From (0, 0, 5.1) the unit sphere is hit at t = 4.1 (no float). Light 0
     // is clear, light 1 behind the small sphere at (0, 1.5, 3).
-    const Scene scene = parseSdl("camera eye 0 0 5.1 look 0 0 0 up 0 1 0 fov 60\n"
-                                 "light 5 0 10 1 1 1 light 0 3 5 1 1 1\n"
-                                 "sphere push translate 0 1.5 3 scale 0.5 0.5 0.5 sphere pop\n",
-                                 "t.sdl", {});
+    const Scene scene = parseSdl(
+        "camera eye 0 0 5.1 look 0 0 0 up 0 1 0 fov 60\n"
+        "light 5 0 10 1 1 1 light 0 3 5 1 1 1\n"
+        "sphere push translate 0 1.5 3 scale 0.5 0.5 0.5 sphere pop\n",
+        "t.sdl", {});
     const RenderSettings settings{5, 5, 1};
     const CameraBasis camera = makeCameraBasis(*scene.camera, 5, 5);
     for (Precision precision : {Precision::Robust, Precision::Fp64}) {
         SCOPED_TRACE(precisionName(precision));
-        gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir, .precision = precision});
+        gpu::GpuTracer tracer(test::gpuContext(),
+                              {.shaderDirectory = test::kShaderDir, .precision = precision});
         const PixelTrace gpu = tracer.tracePixel(scene, camera, settings, 2, 2);
         const bool fp64 = precision == Precision::Fp64;
         EXPECT_EQ(gpu.digits, 9);
@@ -92,9 +95,10 @@ TEST(PixelTrace, TAndTheNormalAtTheModesPrecisionAndEachFeelersVerdict) {
 }
 
 TEST(PixelTrace, AMissRecordsTheBackground) {
-    const Scene scene = parseSdl("camera eye 0 0 5 background 0.25 0.5 0.75\n"
-                                 "push translate 100 0 0 sphere pop\n",
-                                 "t.sdl", {});
+    const Scene scene = parseSdl(
+        "camera eye 0 0 5 background 0.25 0.5 0.75\n"
+        "push translate 100 0 0 sphere pop\n",
+        "t.sdl", {});
     const RenderSettings settings{3, 3, 1};
     const CameraBasis camera = makeCameraBasis(*scene.camera, 3, 3);
     for (const PixelTrace& trace : {gpuTrace(scene, camera, settings, 1, 1),

@@ -2,20 +2,20 @@
 // (rebasing keeps every generic ray; float inverses break ill-conditioned
 // transforms), the naive and fp64 shader variants, renders, and fp64's
 // refusal on a device without shaderFloat64.
+#include "gpu/precision.h"
 #include "app/options.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/shader_variant.h"
 #include "numerics/bounded.h"
-#include "gpu/precision.h"
 #include "reference/reference_tracer.h"
-#include "util/error.h"
 #include "scene/sdl_reader.h"
 #include "support/cli_fixture.h"
 #include "support/gpu_fixture.h"
+#include "util/error.h"
 
+#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
-#include <gtest/gtest.h>
 
 namespace vkray {
 namespace {
@@ -32,7 +32,8 @@ TEST(Precision, ParsesTheThreeModes) {
         parsePrecision("--precision", "double");
         FAIL();
     } catch (const Error& e) {
-        EXPECT_EQ(std::string(e.what()), "--precision: expected naive, robust or fp64, found 'double'");
+        EXPECT_EQ(std::string(e.what()),
+                  "--precision: expected naive, robust or fp64, found 'double'");
     }
 }
 
@@ -47,7 +48,8 @@ TEST(Precision, Fp64IsRefusedNamingADeviceWithoutShaderFloat64) {
         gpu::requirePrecisionSupported(Precision::Fp64, device);
         FAIL();
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("device 2 (Tiny GPU) has no shaderFloat64"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("device 2 (Tiny GPU) has no shaderFloat64"),
+                  std::string::npos)
             << e.what();
     }
     device.shaderFloat64 = true;
@@ -93,7 +95,8 @@ void expectSameGenericPoints(const SceneObject& a, const SceneObject& b, const g
     const glm::dvec3 wb(b.worldFromObject * glm::dvec4(0.3, 0.4, 0.5, 1));
     EXPECT_LE(glm::length(w - e - wb), 1e-8);
     ASSERT_EQ(a.operands.size(), b.operands.size());
-    for (size_t i = 0; i < a.operands.size(); ++i) expectSameGenericPoints(a.operands[i], b.operands[i], e);
+    for (size_t i = 0; i < a.operands.size(); ++i)
+        expectSameGenericPoints(a.operands[i], b.operands[i], e);
 }
 
 TEST(Precision, RobustRebasesTheWorldOnTheEye) {
@@ -136,8 +139,10 @@ TEST(Precision, TheRebasedTranslationIsRoundedOnce) {
 TEST(Precision, NaiveInvertsInFloatAndLosesIllConditionedTransforms) {
     // Squashed between two rotations, so that no column of M carries the 1e-8
     // alone (a column scaling alone survives inversion in float).
-    const Scene scene = parseSdl("rotate 30 1 1 0 scale 2 1e-8 2 rotate 40 0 1 1 cube", "t.sdl", {});
-    const GpuInputs inputs = prepareGpuInputs(Precision::Naive, scene, makeCameraBasis(Camera{}, 4, 4));
+    const Scene scene =
+        parseSdl("rotate 30 1 1 0 scale 2 1e-8 2 rotate 40 0 1 1 cube", "t.sdl", {});
+    const GpuInputs inputs =
+        prepareGpuInputs(Precision::Naive, scene, makeCameraBasis(Camera{}, 4, 4));
     const auto offIdentity = [](const SceneObject& o) {
         const glm::dmat4 product = o.worldFromObject * o.objectFromWorld;
         double worst = 0;
@@ -161,8 +166,9 @@ TEST(Precision, NaiveAndFp64VariantsCompileForEveryShape) {
             all.objectBvh = bvh;
             for (bool debug : {false, true}) {
                 all.debugPixel = debug;
-                EXPECT_NO_THROW(gpu::compileComputeShader(
-                    {test::kShaderDir, "trace.comp", gpu::definesFor(all, precisionDefines(precision))}))
+                EXPECT_NO_THROW(
+                    gpu::compileComputeShader({test::kShaderDir, "trace.comp",
+                                               gpu::definesFor(all, precisionDefines(precision))}))
                     << precisionName(precision) << " " << gpu::describe(all);
             }
         }
@@ -172,8 +178,8 @@ TEST(Precision, NaiveAndFp64VariantsCompileForEveryShape) {
 TEST(PrecisionGpu, ModesAgreeOnAnEasySceneAndDifferFarAway) {
     // Near the origin both modes see the same sphere; at 1e7 naive moves it.
     for (const double offset : {0.0, 1e7}) {
-        const std::string text = "camera eye " + std::to_string(offset + 0.3) +
-                                 " 0 5 look " + std::to_string(offset) +
+        const std::string text = "camera eye " + std::to_string(offset + 0.3) + " 0 5 look " +
+                                 std::to_string(offset) +
                                  " 0 0 fov 30\nlight 0 10 10 1 1 1\npush translate " +
                                  std::to_string(offset) + " 0 0 sphere pop\n";
         const Scene scene = parseSdl(text, "t.sdl", {});
@@ -210,7 +216,8 @@ TEST(PrecisionGpu, Fp64KeepsASquashBetweenTwoRotationsThatFloatLoses) {
     const CameraBasis camera = makeCameraBasis(*scene.camera, settings.width, settings.height);
     const Frame cpu = reference::render(scene, camera, settings, {2});
     const auto idsDiffering = [&](Precision precision) {
-        gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir, .precision = precision});
+        gpu::GpuTracer tracer(test::gpuContext(),
+                              {.shaderDirectory = test::kShaderDir, .precision = precision});
         const Frame gpu = tracer.render(scene, camera, settings);
         size_t differ = 0;
         for (size_t i = 0; i < gpu.pixelCount(); ++i) differ += gpu.id[i] != cpu.id[i];
@@ -236,12 +243,14 @@ TEST_F(PrecisionCli, RenderTakesEachPrecision) {
                                        " --size 32x24 --precision fp64 --check");
     EXPECT_EQ(fp64.status, 0) << fp64.output;
     EXPECT_NE(fp64.output.find("precision fp64"), std::string::npos) << fp64.output;
-    test::RunResult refused = test::vkray("render " + s + " -o " + path("g.png") +
-                                          " --size 32x24 --precision fp64", "VKRAY_FAULT=no-float64");
+    test::RunResult refused =
+        test::vkray("render " + s + " -o " + path("g.png") + " --size 32x24 --precision fp64",
+                    "VKRAY_FAULT=no-float64");
     EXPECT_EQ(refused.status, 1) << refused.output;
     EXPECT_NE(refused.output.find("has no shaderFloat64"), std::string::npos) << refused.output;
     EXPECT_FALSE(test::fs::exists(path("g.png")));
-    test::RunResult cpu = test::vkray("render " + s + " --cpu --precision naive -o " + path("c.png"));
+    test::RunResult cpu =
+        test::vkray("render " + s + " --cpu --precision naive -o " + path("c.png"));
     EXPECT_EQ(cpu.status, 1);
     EXPECT_NE(cpu.output.find("--precision applies to the GPU"), std::string::npos) << cpu.output;
     test::RunResult bad = test::vkray("render " + s + " --precision half");
@@ -261,7 +270,8 @@ TEST(PrecisionOptions, StressAndReportTakeTheirFlagsOnly) {
     EXPECT_TRUE(o.precisionGiven);
     o = parseOptions({"pixel", "s.sdl", "1", "2", "--precision=robust"});
     EXPECT_EQ(o.precision, Precision::Robust);
-    o = parseOptions({"stress", "--cases", "torus", "--size", "32x24", "--out", "d", "--cases-dir", "c"});
+    o = parseOptions(
+        {"stress", "--cases", "torus", "--size", "32x24", "--out", "d", "--cases-dir", "c"});
     EXPECT_EQ(o.command, Command::Stress);
     EXPECT_EQ(o.casesPattern, "torus");
     EXPECT_EQ(o.outDirectory, "d");
@@ -273,7 +283,8 @@ TEST(PrecisionOptions, StressAndReportTakeTheirFlagsOnly) {
     EXPECT_THROW(parseOptions({"render", "s.sdl", "--out", "d"}), Error);
     o = parseOptions({"stress", "--precision", "naive"});  // that mode only
     EXPECT_TRUE(o.precisionGiven);
-    EXPECT_THROW(parseOptions({"report", "s.sdl", "--block", "2"}), Error);  // report sweeps the block
+    EXPECT_THROW(parseOptions({"report", "s.sdl", "--block", "2"}),
+                 Error);  // report sweeps the block
     EXPECT_THROW(parseOptions({"report"}), Error);
     EXPECT_THROW(parseOptions({"stress", "extra"}), Error);
     EXPECT_THROW(parseOptions({"render", "s.sdl", "--precision", "half"}), Error);

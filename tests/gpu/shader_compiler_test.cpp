@@ -1,11 +1,11 @@
 #include "gpu/shader_compiler.h"
+#include "gpu/precision.h"
 #include "gpu/shader_variant.h"
 #include "gpu/spirv_cache.h"
-#include "gpu/precision.h"
 #include "shaders/layout.h"
-#include "util/error.h"
 #include "support/error_of.h"
 #include "support/gpu_fixture.h"
+#include "util/error.h"
 
 #include <gtest/gtest.h>
 
@@ -58,18 +58,21 @@ TEST(ShaderCompiler, TheTracerRefusesAVariantWithAFlagMissing) {
     for (const std::string& missing : variantFlags()) {
         Defines defines = definesFor(ShaderFeatures{}, precisionDefines(Precision::Robust));
         std::erase_if(defines, [&](const auto& d) { return d.first == missing; });
-        const std::string message =
-            errorOf([&] { compileComputeShader({test::kShaderDir, "trace.comp", defines}); });
-        EXPECT_NE(message.find("variant_flags.glsl"), std::string::npos) << missing << ": " << message;
+        const std::string message = errorOf([&] {
+            compileComputeShader({test::kShaderDir, "trace.comp", defines});
+        });
+        EXPECT_NE(message.find("variant_flags.glsl"), std::string::npos)
+            << missing << ": " << message;
         EXPECT_NE(message.find("is not defined"), std::string::npos) << missing << ": " << message;
     }
 }
 
 TEST(ShaderCompiler, ErrorInIncludedFileNamesThatFileAndLine) {
     fs::path dir = shaderFolder("broken", {{"main.comp", kTinyMain},
-                                           {"lib/helper.glsl", "float helper() {\n"
-                                                               "  return undefinedName;\n"
-                                                               "}\n"}});
+                                           {"lib/helper.glsl",
+                                            "float helper() {\n"
+                                            "  return undefinedName;\n"
+                                            "}\n"}});
     try {
         compileComputeShader({dir.string(), "main.comp", {}});
         FAIL() << "a broken shader compiled";
@@ -81,15 +84,17 @@ TEST(ShaderCompiler, ErrorInIncludedFileNamesThatFileAndLine) {
 }
 
 TEST(ShaderCompiler, DefinesReachTheShader) {
-    fs::path dir = shaderFolder("defines", {{"main.comp", kTinyMain},
-                                            {"lib/helper.glsl", "float helper() { return VALUE; }\n"}});
+    fs::path dir = shaderFolder(
+        "defines",
+        {{"main.comp", kTinyMain}, {"lib/helper.glsl", "float helper() { return VALUE; }\n"}});
     EXPECT_THROW(compileComputeShader({dir.string(), "main.comp", {}}), Error);
     EXPECT_NO_THROW(compileComputeShader({dir.string(), "main.comp", {{"VALUE", "2.0"}}}));
 }
 
 TEST(ShaderCompiler, IncludesOutsideTheShaderFolderAreRefused) {
-    fs::path dir = shaderFolder("escape", {{"main.comp", kTinyMain},
-                                           {"lib/helper.glsl", "#include \"../../outside.glsl\"\n"}});
+    fs::path dir = shaderFolder(
+        "escape",
+        {{"main.comp", kTinyMain}, {"lib/helper.glsl", "#include \"../../outside.glsl\"\n"}});
     std::ofstream(dir.parent_path() / "outside.glsl") << "float helper() { return 1.0; }\n";
     EXPECT_THROW(compileComputeShader({dir.string(), "main.comp", {}}), Error);
 }
@@ -117,13 +122,16 @@ TEST(SpirvCache, KeyFollowsSourcesAndDefinesAndSecondLoadHits) {
     std::ofstream(dir / "lib/helper.glsl") << "float helper() { return 2.0; }\n";
     EXPECT_NE(spirvCacheKey(source), key);
     EXPECT_FALSE(loadOrCompile(source).cacheHit);
-    if (previous) ::setenv("VKRAY_CACHE_DIR", saved.c_str(), 1);
-    else ::unsetenv("VKRAY_CACHE_DIR");
+    if (previous)
+        ::setenv("VKRAY_CACHE_DIR", saved.c_str(), 1);
+    else
+        ::unsetenv("VKRAY_CACHE_DIR");
 }
 
 TEST(ShaderCompiler, CompilesTheViewsPresentShader) {
     // `vkray view`'s shader compiles without a window (its tests need an X server).
-    const std::vector<std::uint32_t> spirv = compileComputeShader({test::kShaderDir, "present.comp", {}});
+    const std::vector<std::uint32_t> spirv =
+        compileComputeShader({test::kShaderDir, "present.comp", {}});
     ASSERT_FALSE(spirv.empty());
     EXPECT_EQ(spirv[0], kSpirvMagic);
 }

@@ -28,7 +28,8 @@ ShaderFeatures featuresOfText(const std::string& sdl, int spp = 1, bool allFeatu
 // Every shader source, by path.
 std::vector<std::pair<std::string, std::string>> shaderSources() {
     std::vector<std::pair<std::string, std::string>> files;
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(VKRAY_SOURCE_DIR "/shaders")) {
+    for (const auto& entry :
+         std::filesystem::recursive_directory_iterator(VKRAY_SOURCE_DIR "/shaders")) {
         if (!entry.is_regular_file()) continue;
         std::stringstream text;
         text << std::ifstream(entry.path()).rdbuf();
@@ -66,8 +67,8 @@ TEST(ShaderVariant, EveryFlagAShaderTestsIsAVariantFlag) {
             for (auto it = std::sregex_iterator(expression.begin(), expression.end(), name);
                  it != std::sregex_iterator(); ++it) {
                 ++tested;
-                EXPECT_TRUE(known.count(it->str())) << path << ":" << number << ": " << it->str()
-                                                    << " is not a variant flag";
+                EXPECT_TRUE(known.count(it->str()))
+                    << path << ":" << number << ": " << it->str() << " is not a variant flag";
             }
         }
     }
@@ -140,10 +141,13 @@ TEST(ShaderVariant, SecondaryRaysAboveTheirThresholdsWithRecursion) {
     EXPECT_TRUE(mirror.has(Shading::Reflection));
     EXPECT_FALSE(mirror.has(Shading::Refraction));
     EXPECT_EQ(describe(mirror), "sphere+reflection");
-    EXPECT_TRUE(featuresOfText("minReflectivity 0.1 reflectivity 0.2 sphere").has(Shading::Reflection));
-    EXPECT_FALSE(featuresOfText("maxRecursionDepth 0 reflectivity 0.9 sphere").has(Shading::Reflection));
+    EXPECT_TRUE(
+        featuresOfText("minReflectivity 0.1 reflectivity 0.2 sphere").has(Shading::Reflection));
+    EXPECT_FALSE(
+        featuresOfText("maxRecursionDepth 0 reflectivity 0.9 sphere").has(Shading::Reflection));
     EXPECT_TRUE(featuresOfText("transparency 0.9 sphere").has(Shading::Refraction));
-    EXPECT_FALSE(featuresOfText("maxRecursionDepth 0 transparency 0.9 sphere").has(Shading::Refraction));
+    EXPECT_FALSE(
+        featuresOfText("maxRecursionDepth 0 transparency 0.9 sphere").has(Shading::Refraction));
     // A boolean's operands count.
     EXPECT_TRUE(featuresOfText("union sphere transparency 0.9 cube").has(Shading::Refraction));
 }
@@ -177,7 +181,8 @@ TEST(ShaderVariant, ShadersCheckCoversEachShadingFeatureAndTheirMix) {
     };
     for (std::size_t i = 0; i < kGpuShading.size(); ++i)
         EXPECT_GE(count([&](const ShaderFeatures& f) {
-                      return f.shading[i] && std::count(f.shading.begin(), f.shading.end(), true) == 1;
+                      return f.shading[i] &&
+                             std::count(f.shading.begin(), f.shading.end(), true) == 1;
                   }),
                   2)
             << kGpuShading[i].name << " alone, with and without the object BVH";

@@ -25,10 +25,12 @@ OnePixel centrePixel(const std::string& sdl, Precision precision, double eyeZ) {
     camera.eye = {0, 0, eyeZ};
     camera.look = {0, 0, 0};
     camera.up = {0, 1, 0};
-    gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir, .precision = precision});
+    gpu::GpuTracer tracer(test::gpuContext(),
+                          {.shaderDirectory = test::kShaderDir, .precision = precision});
     std::vector<StressSample> samples;
     OnePixel pixel;
-    pixel.frame = tracer.renderStressOutput(scene, makeCameraBasis(camera, 1, 1), {1, 1, 1}, samples);
+    pixel.frame =
+        tracer.renderStressOutput(scene, makeCameraBasis(camera, 1, 1), {1, 1, 1}, samples);
     EXPECT_EQ(samples.size(), 1u);
     pixel.sample = samples.at(0);
     return pixel;
@@ -59,8 +61,9 @@ TEST(StressOutput, TAndTheNormalAsEachModeComputesThem) {
 }
 
 TEST(StressOutput, AMissHasNoHitAndNoFeelers) {
-    const StressSample s = centrePixel("light 0 0 10 1 1 1\npush translate 5 0 0 sphere pop\n",
-                                       Precision::Robust, 5).sample;
+    const StressSample s =
+        centrePixel("light 0 0 10 1 1 1\npush translate 5 0 0 sphere pop\n", Precision::Robust, 5)
+            .sample;
     EXPECT_EQ(s.object, -1);
     EXPECT_TRUE(std::isinf(s.t));
     EXPECT_EQ(s.feelersTraced, 0u);
@@ -70,8 +73,9 @@ TEST(StressOutput, FeelersVerdictsAndTheObjectTheyLeft) {
     // Light 0 above the hit (0, 0, 1), to one side: its feeler is clear. Light 1
     // at (0, 0, -10), behind the surface: no feeler. Light 2 above, behind a
     // small sphere at (0, 0, 3): its feeler meets that sphere, not the one it left.
-    const char* scene = "light 5 0 10 1 1 1 light 0 0 -10 1 1 1 light 0 0.2 20 1 1 1\n"
-                        "sphere\npush translate 0 0.1 3 scale 0.5 0.5 0.5 sphere pop\n";
+    const char* scene =
+        "light 5 0 10 1 1 1 light 0 0 -10 1 1 1 light 0 0.2 20 1 1 1\n"
+        "sphere\npush translate 0 0.1 3 scale 0.5 0.5 0.5 sphere pop\n";
     for (Precision precision : kAllPrecisions) {
         SCOPED_TRACE(precisionName(precision));
         const StressSample s = centrePixel(scene, precision, 1.5).sample;
@@ -102,8 +106,9 @@ TEST(StressOutput, WithoutTheOffsetAFeelerMeetsTheSurfaceItLeaves) {
     // lit from above (the stress case acne_large_sphere): starting on the
     // surface (VKRAY_FAULT=no-offset), the feeler of 43 of the 192 pixels
     // meets it again at once; with the offset, none.
-    const char* scene = "light 20500 33000 10500 1 1 1\n"
-                        "push translate 20000.3 29000 10000.7 scale 1000 1000 1000 sphere pop\n";
+    const char* scene =
+        "light 20500 33000 10500 1 1 1\n"
+        "push translate 20000.3 29000 10000.7 scale 1000 1000 1000 sphere pop\n";
     const Scene parsed = parseSdl(scene, "t.sdl", {});
     Camera camera;
     camera.eye = {20000, 30030, 10060};

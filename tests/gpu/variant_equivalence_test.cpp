@@ -161,8 +161,10 @@ TEST(ShaderVariant, BindingsMatchTheSpirv) {
             for (bool debug : {false, true}) {
                 gpu::ShaderFeatures f;
                 f.kinds[gpu::KIND_SPHERE] = true;
-                if (feature < kinds) f.kinds[feature] = true;
-                else if (feature < kinds + shadings) f.shading[feature - kinds] = true;
+                if (feature < kinds)
+                    f.kinds[feature] = true;
+                else if (feature < kinds + shadings)
+                    f.shading[feature - kinds] = true;
                 else {
                     f.kinds.fill(true);
                     f.shading.fill(true);

@@ -8,9 +8,9 @@
 #include "support/gpu_fixture.h"
 
 #include "reference/reference_tracer.h"
-#include "util/error.h"
 #include "support/error_of.h"
 #include "support/frame_difference.h"
+#include "util/error.h"
 
 #include <gtest/gtest.h>
 
@@ -28,8 +28,8 @@ std::string sphereGrid() {
     std::string sdl = "camera eye 0 0 40 look 0 0 0 up 0 1 0 fov 40\nlight 10 20 30 1 1 1\n";
     for (int i = 0; i < 16; ++i)
         for (int j = 0; j < 16; ++j)
-            sdl += "push translate " + std::to_string(2 * i - 15) + " " + std::to_string(2 * j - 15) +
-                   " 0 scale 0.9 0.9 0.9 sphere pop\n";
+            sdl += "push translate " + std::to_string(2 * i - 15) + " " +
+                   std::to_string(2 * j - 15) + " 0 scale 0.9 0.9 0.9 sphere pop\n";
     return sdl;
 }
 
@@ -148,12 +148,15 @@ TEST(WorkBound, OneRayBeyondTheLoopLimitIsRefused) {
 // Two facing mirrors and nine small spheres between them (an object BVH):
 // a ray that starts between them bounces to the deepest level asked for.
 std::string facingMirrors(int depth) {
-    std::string sdl = "camera eye 0 0 9 look 0 0 -10 up 0 1 0 fov 30\nlight 0 8 0 1 1 1\n"
-                      "maxRecursionDepth " + std::to_string(depth) + "\n"
-                      "reflectivity 0.9 diffuse 0.1 0.1 0.1\n"
-                      "push translate 0 0 -10 scale 20 20 1 cube pop\n"
-                      "push translate 0 0 10.5 rotate 3 0 1 0 scale 20 20 1 cube pop\n"
-                      "reflectivity 0 diffuse 0.8 0.3 0.2\n";
+    std::string sdl =
+        "camera eye 0 0 9 look 0 0 -10 up 0 1 0 fov 30\nlight 0 8 0 1 1 1\n"
+        "maxRecursionDepth " +
+        std::to_string(depth) +
+        "\n"
+        "reflectivity 0.9 diffuse 0.1 0.1 0.1\n"
+        "push translate 0 0 -10 scale 20 20 1 cube pop\n"
+        "push translate 0 0 10.5 rotate 3 0 1 0 scale 20 20 1 cube pop\n"
+        "reflectivity 0 diffuse 0.8 0.3 0.2\n";
     for (int i = 0; i < 9; ++i)
         sdl += "push translate " + std::to_string(i % 3 - 1) + " " + std::to_string(i / 3 - 1) +
                " " + std::to_string(-3 * (i % 3)) + " scale 0.3 0.3 0.3 sphere pop\n";

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "image/image_io.h"
-#include "util/error.h"
 #include "support/error_of.h"
+#include "util/error.h"
 
 namespace vkray {
 namespace {
@@ -22,8 +22,7 @@ std::string littleEndian(std::uint32_t v, int bytes) {
 // A 24-bit uncompressed BMP (BITMAPINFOHEADER), written out by hand: rows
 // bottom-up, each pixel B G R, each row padded to 4 bytes. pixel(x, y) gives
 // the RGB of image row y (0 = top).
-std::string bmp24(int width, int height,
-                  const std::function<std::uint32_t(int, int)>& pixel) {
+std::string bmp24(int width, int height, const std::function<std::uint32_t(int, int)>& pixel) {
     const int rowBytes = (width * 3 + 3) / 4 * 4;
     std::string data;
     for (int row = height - 1; row >= 0; --row) {
@@ -40,8 +39,8 @@ std::string bmp24(int width, int height,
            littleEndian(offset, 4) + littleEndian(40, 4) + littleEndian(std::uint32_t(width), 4) +
            littleEndian(std::uint32_t(height), 4) + littleEndian(1, 2) + littleEndian(24, 2) +
            littleEndian(0, 4) + littleEndian(std::uint32_t(data.size()), 4) +
-           littleEndian(2835, 4) + littleEndian(2835, 4) + littleEndian(0, 4) +
-           littleEndian(0, 4) + data;
+           littleEndian(2835, 4) + littleEndian(2835, 4) + littleEndian(0, 4) + littleEndian(0, 4) +
+           data;
 }
 
 TEST(Bmp, TwentyFourBitPixelsComeBackTopRowFirst) {
@@ -72,17 +71,19 @@ TEST(Bmp, EachFormatIsReadOnlyUnderItsOwnNameAndSignature) {
     EXPECT_EQ(errorOf([] { decodeImage("BM", "x.bmp"); }),
               "x.bmp: truncated BMP: the file ends inside its header (2 bytes)");
     // vkray reads BMP but does not write it.
-    EXPECT_EQ(errorOf([] { writeImage("/nonexistent/x.bmp", Image{1, 1, 3, {0, 0, 0}}); }),
+    EXPECT_EQ(errorOf([] {
+                  writeImage("/nonexistent/x.bmp", Image{1, 1, 3, {0, 0, 0}});
+              }),
               "/nonexistent/x.bmp: unsupported image format '.bmp' (use .png, .pfm or .exr)");
 }
 
 TEST(Bmp, OsTwoPalettesAreRefusedRatherThanDecodedBlack) {
     // fuzz/seeds/image/os2-1bit.bmp: stb_image 2.27 reads its palette as empty.
     const std::string bytes(
-        "BM(\0\0\0\0\0\0\0 \0\0\0"                // file header: pixels at 32
-        "\x0c\0\0\0\x08\0\x02\0\x01\0\x01\0"    // OS/2 header: 8 x 2, 1 bit
-        "\0\0\0\xff\xff\0"                          // palette: black, cyan
-        "\x55\0\0\0\xaa\0\0\0",                   // rows, bottom first
+        "BM(\0\0\0\0\0\0\0 \0\0\0"            // file header: pixels at 32
+        "\x0c\0\0\0\x08\0\x02\0\x01\0\x01\0"  // OS/2 header: 8 x 2, 1 bit
+        "\0\0\0\xff\xff\0"                    // palette: black, cyan
+        "\x55\0\0\0\xaa\0\0\0",               // rows, bottom first
         40);
     EXPECT_EQ(errorOf([&] { decodeImage(bytes, "os2.bmp"); }),
               "os2.bmp: OS/2 BMP files with a palette are not supported (save it as a Windows "
@@ -101,8 +102,8 @@ TEST(Bmp, ClaimingTooManyPixelsIsRefusedBeforeDecoding) {
 // header of width and height 0 into a 0 x 0 "image".
 TEST(BmpFuzzRegression, ZeroSizedImageIsRefused) {
     const std::string bytes(
-        "BMPF\n2\x01\0\0\0\x1a\0\0\0"         // file header: pixels at 26
-        "\x0c\0\0\0\0\0\0\0\x01\0\x18\0"     // OS/2 header: 0 x 0, 24 bits
+        "BMPF\n2\x01\0\0\0\x1a\0\0\0"     // file header: pixels at 26
+        "\x0c\0\0\0\0\0\0\0\x01\0\x18\0"  // OS/2 header: 0 x 0, 24 bits
         "\0\0\x01\0\0\0>\xfe",
         34);
     EXPECT_EQ(errorOf([&] { decodeImage(bytes, "fuzz.bmp"); }),
@@ -114,7 +115,7 @@ TEST(BmpFuzzRegression, ZeroSizedImageIsRefused) {
 // 7424 pixels kept stb busy for seconds filling the missing rows with zeros.
 TEST(BmpFuzzRegression, HugeClaimInATinyFileIsRefusedAtOnce) {
     const std::string bytes(
-        "BMPF\n2\x01\0\0\0\xfa\x01\0\0"     // file header: pixels at 506
+        "BMPF\n2\x01\0\0\0\xfa\x01\0\0"      // file header: pixels at 506
         "\x0c\0\0\0\0\x19\0\x1d\x01\0\x18",  // OS/2 header: 6400 x 7424, 24 bits (cut)
         25);
     EXPECT_EQ(errorOf([&] { decodeImage(bytes, "fuzz.bmp"); }),

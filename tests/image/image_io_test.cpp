@@ -1,5 +1,5 @@
-#include "image/aov_images.h"
 #include "image/image_io.h"
+#include "image/aov_images.h"
 #include "image/stb_codecs.h"
 
 #include <gtest/gtest.h>

@@ -21,9 +21,12 @@ inline std::vector<std::vector<std::string>> parseCsv(const std::string& text) {
     for (size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
         if (quoted) {
-            if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') field += '"', ++i;
-            else if (c == '"') quoted = false;
-            else field += c;
+            if (c == '"' && i + 1 < text.size() && text[i + 1] == '"')
+                field += '"', ++i;
+            else if (c == '"')
+                quoted = false;
+            else
+                field += c;
         } else if (c == '"') {
             quoted = true;
         } else if (c == ',') {
@@ -75,11 +78,13 @@ inline std::string xmlProblem(const std::string& s) {
         if (quotes % 2) return "unbalanced quotes in <" + tag + ">";
         const bool closing = !tag.empty() && tag[0] == '/';
         const bool selfClosing = !tag.empty() && tag.back() == '/';
-        const std::string name = tag.substr(closing ? 1 : 0, tag.find_first_of(" /\t\n", 1) - (closing ? 1 : 0));
+        const std::string name =
+            tag.substr(closing ? 1 : 0, tag.find_first_of(" /\t\n", 1) - (closing ? 1 : 0));
         if (name.empty()) return "empty tag name at " + std::to_string(i);
         if (closing) {
             if (open.empty() || open.back() != name)
-                return "</" + name + "> closes <" + (open.empty() ? "" : open.back()) + "> at " + std::to_string(i);
+                return "</" + name + "> closes <" + (open.empty() ? "" : open.back()) + "> at " +
+                       std::to_string(i);
             open.pop_back();
         } else if (!selfClosing) {
             open.push_back(name);

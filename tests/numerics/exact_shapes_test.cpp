@@ -9,13 +9,17 @@
 namespace vkray::numerics {
 namespace {
 
-BVec v(const Quad& x, const Quad& y, const Quad& z) { return {Bounded(x), Bounded(y), Bounded(z)}; }
+BVec v(const Quad& x, const Quad& y, const Quad& z) {
+    return {Bounded(x), Bounded(y), Bounded(z)};
+}
 
 // t is within the crossing's certified bracket (give or take the rounding
 // of the test's own closed form, a few float128 units), which is at most
 // 1e-28 of it.
-void expectCrossing(const ExactCrossing& c, const Quad& t, CrossingKind kind = CrossingKind::Crossing) {
-    EXPECT_LE(abs(c.t - t), c.tBound + 64 * kQuadUnit * abs(t)) << double(c.t) << " against " << double(t);
+void expectCrossing(const ExactCrossing& c, const Quad& t,
+                    CrossingKind kind = CrossingKind::Crossing) {
+    EXPECT_LE(abs(c.t - t), c.tBound + 64 * kQuadUnit * abs(t))
+        << double(c.t) << " against " << double(t);
     EXPECT_LE(double(c.tBound), 1e-28 * double(abs(t) + 1));
     EXPECT_EQ(c.kind, kind) << double(c.t);
 }

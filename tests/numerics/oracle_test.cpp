@@ -3,8 +3,8 @@
 // the metrics computed against it.
 #include "numerics/oracle.h"
 #include "numerics/stress_suite.h"
-#include "util/error.h"
 #include "scene/sdl_reader.h"
+#include "util/error.h"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +18,9 @@ OracleRay ray(const glm::dvec3& origin, const glm::dvec3& direction) {
     return exactRay(origin, glm::normalize(direction));
 }
 
-Scene sceneOf(const std::string& text) { return parseSdl(text, "test.sdl", {}); }
+Scene sceneOf(const std::string& text) {
+    return parseSdl(text, "test.sdl", {});
+}
 
 TEST(Oracle, SphereAMillionAwayInTheWorld) {
     // A unit sphere at (1e6, 0, 0) seen from the origin straight on: t = 1e6 - 1,
@@ -47,7 +49,8 @@ TEST(Oracle, EllipsoidNormalUsesInverseTranspose) {
 }
 
 TEST(Oracle, TiesGoToTheLowerIndexAndNormalsFaceTheRay) {
-    const Scene scene = sceneOf("plane push rotate 37 0 0 1 plane pop push translate 0 0 -1 sphere pop");
+    const Scene scene =
+        sceneOf("plane push rotate 37 0 0 1 plane pop push translate 0 0 -1 sphere pop");
     const OracleHit hit = closestHit(scene, ray({0.2, 0.1, 3}, {0, 0, -1}));
     EXPECT_EQ(hit.id, 0);
     EXPECT_EQ(double(hit.t), 3);

@@ -1,16 +1,16 @@
 // The report files (CSV, JSON, HTML with SVG plots), `vkray report`'s sweep
 // over the knobs, and both commands as a user runs them.
+#include "image/image_io.h"
+#include "image/pictures.h"
 #include "numerics/document_check.h"
 #include "numerics/report_sweep.h"
 #include "numerics/report_writer.h"
 #include "scene/scene_geometry.h"
 #include "support/cli_fixture.h"
 #include "support/gpu_fixture.h"
-#include "image/image_io.h"
-#include "image/pictures.h"
 
-#include <nlohmann/json.hpp>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
@@ -43,8 +43,10 @@ Report sampleReport() {
     plot.title = "t & time";
     plot.xLabel = "s";
     plot.yLabel = "error";
-    plot.points = {{"slow exact", 2.0, 0.0, false}, {"fast <rough>", 0.01, 3e-3, true},
-                   {"middle", 0.1, 1e-6, false}, {"dominated", 3.0, 1e-2, false}};
+    plot.points = {{"slow exact", 2.0, 0.0, false},
+                   {"fast <rough>", 0.01, 3e-3, true},
+                   {"middle", 0.1, 1e-6, false},
+                   {"dominated", 3.0, 1e-2, false}};
     r.plots = {plot};
     return r;
 }
@@ -243,11 +245,14 @@ TEST(ReportSweep, ErrorFallsWithSamplesGrowsWithBlockEveryPrecisionRuns) {
     options.height = 36;
     options.shaderDirectory = test::kShaderDir;
     options.threads = 2;
-    const std::vector<SweepPoint> points = runSweep(scene, camera, test::gpuContext(), options, nullptr);
-    ASSERT_EQ(points.size(), 3u * 2u * 3u * 2u + 2u);  // every combination, then a reference per size
-    const auto find = [&](const std::string& precision, const std::string& spp, const std::string& block) {
-        const std::vector<std::string> values{"precision " + precision, "spp " + spp, "block " + block,
-                                              "size full"};
+    const std::vector<SweepPoint> points =
+        runSweep(scene, camera, test::gpuContext(), options, nullptr);
+    ASSERT_EQ(points.size(),
+              3u * 2u * 3u * 2u + 2u);  // every combination, then a reference per size
+    const auto find = [&](const std::string& precision, const std::string& spp,
+                          const std::string& block) {
+        const std::vector<std::string> values{"precision " + precision, "spp " + spp,
+                                              "block " + block, "size full"};
         for (const SweepPoint& p : points)
             if (p.values == values) return p;
         ADD_FAILURE() << precision << " " << spp << " " << block;
@@ -316,16 +321,20 @@ TEST_F(NumericsCli, StressWritesTableCsvJsonHtml) {
     for (const char* mark : {"flip", "wrong id", "acne"})
         EXPECT_NE(legendText.find(mark), std::string::npos) << mark;
 
-    EXPECT_NE(run.output.find("result: 4 of 4 rows as expected (PASS)"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("result: 4 of 4 rows as expected (PASS)"), std::string::npos)
+        << run.output;
 
     // A case that claims to break naive but does not: exit 2, named.
     fs::create_directories(dir / "cases");
     std::ofstream(dir / "cases/easy.sdl")
-        << "! stress: a unit sphere at the origin\n! stiff: nothing\n! correct: t = 4 at the centre\n"
+        << "! stress: a unit sphere at the origin\n! stiff: nothing\n! correct: t = 4 at the "
+           "centre\n"
            "! naive: fails\ncamera eye 0 0 5 look 0 0 0 fov 40\nlight 5 5 5 1 1 1\nsphere\n";
-    test::RunResult easy = test::vkray("stress --size 24x18 --cases-dir " + path("cases") + " --out " + path("easy"));
+    test::RunResult easy =
+        test::vkray("stress --size 24x18 --cases-dir " + path("cases") + " --out " + path("easy"));
     EXPECT_EQ(easy.status, 2) << easy.output;
-    EXPECT_NE(easy.output.find("unexpected: easy naive passes a case built to break it"), std::string::npos)
+    EXPECT_NE(easy.output.find("unexpected: easy naive passes a case built to break it"),
+              std::string::npos)
         << easy.output;
 
     test::RunResult none = test::vkray("stress --cases nothing-matches --cases-dir " +
@@ -343,7 +352,8 @@ std::vector<std::string> verdictsOf(const fs::path& csvPath, const std::string& 
     const auto column = [&](const std::string& name) {
         return size_t(std::find(csv[0].begin(), csv[0].end(), name) - csv[0].begin());
     };
-    const size_t modeColumn = column("mode"), verdictColumn = column("verdict"), noteColumn = column("note");
+    const size_t modeColumn = column("mode"), verdictColumn = column("verdict"),
+                 noteColumn = column("note");
     for (size_t i = 1; i < csv.size(); ++i)
         if (csv[i].size() > noteColumn && csv[i][modeColumn] == mode)
             verdicts.push_back(csv[i][verdictColumn] + ": " + csv[i][noteColumn]);
@@ -353,15 +363,17 @@ std::vector<std::string> verdictsOf(const fs::path& csvPath, const std::string& 
 // --precision fp64 on a device without doubles: the one mode asked for did
 // not run, so the run fails, whatever the CPU rows say.
 TEST_F(NumericsCli, StressFailsWhenTheModeAskedForDidNotRun) {
-    test::RunResult run = test::vkray("stress --cases tiny --size 24x18 --precision fp64 --cases-dir " +
-                                          test::kSourceDir + "/scenes/stress --out " + path("nd"),
-                                      "VKRAY_FAULT=no-float64");
+    test::RunResult run =
+        test::vkray("stress --cases tiny --size 24x18 --precision fp64 --cases-dir " +
+                        test::kSourceDir + "/scenes/stress --out " + path("nd"),
+                    "VKRAY_FAULT=no-float64");
     EXPECT_EQ(run.status, 2) << run.output;
     EXPECT_EQ(run.output.find("(PASS)"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("not run: fp64 on 1 of 1 case: the device has no shaderFloat64"),
               std::string::npos)
         << run.output;
-    EXPECT_NE(run.output.find("result: 1 of 2 rows as expected (1 not run) (FAIL)"), std::string::npos)
+    EXPECT_NE(run.output.find("result: 1 of 2 rows as expected (1 not run) (FAIL)"),
+              std::string::npos)
         << run.output;
     EXPECT_NE(run.output.find("not run"), std::string::npos) << run.output;  // the table's verdict
     EXPECT_EQ(verdictsOf(dir / "nd/stress.csv", "fp64"),
@@ -370,22 +382,25 @@ TEST_F(NumericsCli, StressFailsWhenTheModeAskedForDidNotRun) {
     const std::string json = readFile(dir / "nd/stress.json");
     EXPECT_TRUE(nlohmann::json::parse(json).is_object());
     EXPECT_NE(json.find("\"not run\""), std::string::npos);
-    EXPECT_NE(json.find("not run: fp64 on 1 of 1 case: the device has no shaderFloat64"), std::string::npos);
+    EXPECT_NE(json.find("not run: fp64 on 1 of 1 case: the device has no shaderFloat64"),
+              std::string::npos);
     const std::string html = readFile(dir / "nd/stress.html");
     EXPECT_EQ(test::xmlProblem(html), "");
-    EXPECT_NE(html.find("not run: fp64 on 1 of 1 case: the device has no shaderFloat64"), std::string::npos);
+    EXPECT_NE(html.find("not run: fp64 on 1 of 1 case: the device has no shaderFloat64"),
+              std::string::npos);
 }
 
 // Every mode (no --precision): fp64 not running fails the run too, and says so.
 TEST_F(NumericsCli, StressOfEveryModeFailsWhenFp64DidNotRun) {
-    test::RunResult run = test::vkray("stress --cases tiny --size 24x18 --cases-dir " + test::kSourceDir +
-                                          "/scenes/stress --out " + path("all"),
+    test::RunResult run = test::vkray("stress --cases tiny --size 24x18 --cases-dir " +
+                                          test::kSourceDir + "/scenes/stress --out " + path("all"),
                                       "VKRAY_FAULT=no-float64");
     EXPECT_EQ(run.status, 2) << run.output;
     EXPECT_NE(run.output.find("not run: fp64 on 1 of 1 case: the device has no shaderFloat64"),
               std::string::npos)
         << run.output;
-    EXPECT_NE(run.output.find("result: 3 of 4 rows as expected (1 not run) (FAIL)"), std::string::npos)
+    EXPECT_NE(run.output.find("result: 3 of 4 rows as expected (1 not run) (FAIL)"),
+              std::string::npos)
         << run.output;
     EXPECT_EQ(verdictsOf(dir / "all/stress.csv", "fp64"),
               std::vector<std::string>{"not run: the device has no shaderFloat64"});
@@ -405,23 +420,26 @@ TEST_F(NumericsCli, StressFindsItsCasesNextToTheBinaryFromAnyFolder) {
     fs::copy(built / "shaders", bin / "shaders", fs::copy_options::recursive);
     fs::copy(built / "scenes/stress", bin / "scenes/stress", fs::copy_options::recursive);
     fs::create_directories(dir / "elsewhere");
-    test::RunResult run = test::runShell("cd " + path("elsewhere") + " && " + (bin / "vkray").string() +
-                                         " stress --cases tiny_sphere --size 32x24 --precision robust");
+    test::RunResult run =
+        test::runShell("cd " + path("elsewhere") + " && " + (bin / "vkray").string() +
+                       " stress --cases tiny_sphere --size 32x24 --precision robust");
     EXPECT_EQ(run.status, 0) << run.output;
     EXPECT_NE(run.output.find("stress: 1 cases"), std::string::npos) << run.output;
-    EXPECT_NE(run.output.find("result: 2 of 2 rows as expected (PASS)"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("result: 2 of 2 rows as expected (PASS)"), std::string::npos)
+        << run.output;
     EXPECT_TRUE(fs::exists(dir / "elsewhere/stress-report/stress.csv"));
 
     // Without them next to it, the error says where it looked and what to pass.
     fs::remove_all(bin / "scenes");
-    test::RunResult lost = test::runShell("cd " + path("elsewhere") + " && " + (bin / "vkray").string() +
-                                          " stress --cases tiny_sphere --size 32x24");
+    test::RunResult lost =
+        test::runShell("cd " + path("elsewhere") + " && " + (bin / "vkray").string() +
+                       " stress --cases tiny_sphere --size 32x24");
     EXPECT_EQ(lost.status, 1) << lost.output;
-    EXPECT_NE(lost.output.find("cannot find the stress cases next to the binary (" +
-                               (bin / "scenes/stress").string() + ") nor in the installed place (" +
-                               (dir / "install/share/vkray/stress").string() +
-                               "); pass --cases-dir DIR"),
-              std::string::npos)
+    EXPECT_NE(
+        lost.output.find("cannot find the stress cases next to the binary (" +
+                         (bin / "scenes/stress").string() + ") nor in the installed place (" +
+                         (dir / "install/share/vkray/stress").string() + "); pass --cases-dir DIR"),
+        std::string::npos)
         << lost.output;
 }
 
@@ -436,10 +454,12 @@ TEST_F(NumericsCli, StressFindsItsInstalledCasesAndShadersFromAnyFolder) {
     fs::copy(built / "shaders", prefix / "share/vkray/shaders", fs::copy_options::recursive);
     fs::copy(built / "scenes/stress", prefix / "share/vkray/stress", fs::copy_options::recursive);
     fs::create_directories(dir / "elsewhere");
-    test::RunResult run = test::runShell("cd " + path("elsewhere") + " && " + (prefix / "bin/vkray").string() +
-                                         " stress --cases tiny_sphere --size 32x24 --precision robust");
+    test::RunResult run =
+        test::runShell("cd " + path("elsewhere") + " && " + (prefix / "bin/vkray").string() +
+                       " stress --cases tiny_sphere --size 32x24 --precision robust");
     EXPECT_EQ(run.status, 0) << run.output;
-    EXPECT_NE(run.output.find("result: 2 of 2 rows as expected (PASS)"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("result: 2 of 2 rows as expected (PASS)"), std::string::npos)
+        << run.output;
     EXPECT_TRUE(fs::exists(dir / "elsewhere/stress-report/stress.csv"));
 }
 
@@ -475,11 +495,13 @@ TEST_F(NumericsCli, ReportWritesItsFilesAndNamesBadInput) {
             EXPECT_EQ(group->all("svg", "scale").size(), reference ? 0u : 1u);
         }
     }
-    test::RunResult robust = test::vkray("report " + s + " --size 24x18 --precision robust --out " + path("rob"));
+    test::RunResult robust =
+        test::vkray("report " + s + " --size 24x18 --precision robust --out " + path("rob"));
     ASSERT_EQ(robust.status, 0) << robust.output;
     EXPECT_EQ(test::parseCsv(readFile(dir / "rob/report.csv")).size(), 1u + 12u + 2u);
     EXPECT_EQ(robust.output.find("precision naive"), std::string::npos) << robust.output;
-    test::RunResult bad = test::vkray("report " + scene("bad.sdl", "sphere frobnicate\n") + " --out " + path("x"));
+    test::RunResult bad =
+        test::vkray("report " + scene("bad.sdl", "sphere frobnicate\n") + " --out " + path("x"));
     EXPECT_EQ(bad.status, 1);
     EXPECT_NE(bad.output.find("bad.sdl:1:8"), std::string::npos) << bad.output;
     EXPECT_EQ(test::vkray("report").status, 1);

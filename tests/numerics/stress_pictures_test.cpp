@@ -43,7 +43,7 @@ TEST(StressPictures, MarksFlipsWrongIdsAndAcneInTheirColours) {
                                     oracleHit(0)};
     oracle[4].setAside[kFloat] = true;
     const std::vector<StressSample> samples{sampleOf(-1), sampleOf(1), sampleOf(1), sampleOf(-1),
-                                          sampleOf(-1)};
+                                            sampleOf(-1)};
     const ModePicture picture = markedPicture("robust", frame, oracle, samples, kFloat, {2});
     EXPECT_EQ(picture.mode, "robust");
     EXPECT_EQ(picture.flips, 1u);

@@ -5,22 +5,22 @@
 // within 8 u times each pixel's condition), naive mode fails exactly the
 // cases built to break it; and every bound fails on deliberately broken
 // input.
+#include "numerics/stress_suite.h"
 #include "gpu/shader_variant.h"
+#include "numerics/document_check.h"
 #include "numerics/secondary_check.h"
 #include "numerics/stress_report.h"
-#include "numerics/stress_suite.h"
-#include "util/error.h"
 #include "support/gpu_fixture.h"
-#include "numerics/document_check.h"
+#include "util/error.h"
 
 #include <nlohmann/json.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <algorithm>
 #include <limits>
 
 namespace vkray::numerics {
@@ -58,9 +58,10 @@ TEST_P(StressCaseTest, RobustFp64AndDoublePassNaiveFailsWhereBuiltTo) {
     options.shaderDirectory = test::kShaderDir;
     options.threads = 2;
     options.gpuModes = {Precision::Naive, Precision::Robust, Precision::Fp64};
-    const std::vector<ModeMetrics> rows = runStressCase(stressCase, &test::gpuContext(), options, nullptr);
-    const bool castsShadows =
-        gpu::featuresOf(loadScene(stressCase.path, {}, nullptr), {}, false).has(gpu::Shading::Shadows);
+    const std::vector<ModeMetrics> rows =
+        runStressCase(stressCase, &test::gpuContext(), options, nullptr);
+    const bool castsShadows = gpu::featuresOf(loadScene(stressCase.path, {}, nullptr), {}, false)
+                                  .has(gpu::Shading::Shadows);
     ASSERT_EQ(rows.size(), 4u);
     for (const ModeMetrics& m : rows) {
         std::cout << describe(m) << "\n";
@@ -70,7 +71,8 @@ TEST_P(StressCaseTest, RobustFp64AndDoublePassNaiveFailsWhereBuiltTo) {
         EXPECT_LE(m.setAside, m.besideEdges) << describe(m);
         if (m.mode == "naive")
             EXPECT_EQ(withinBounds(m), !stressCase.naiveFails)
-                << (stressCase.naiveFails ? "not stiff enough for naive: " : "naive fails: ") << describe(m);
+                << (stressCase.naiveFails ? "not stiff enough for naive: " : "naive fails: ")
+                << describe(m);
         else
             EXPECT_TRUE(withinBounds(m)) << describe(m);
         // The variant traces feelers wherever one can meet an object (not on a lone plane).
@@ -102,7 +104,8 @@ struct CaseRun {
 
     std::vector<StressSample> samples(Precision precision) const {
         if (precision == Precision::Naive) throw Error("naive: not broken on purpose");
-        gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir, .precision = precision});
+        gpu::GpuTracer tracer(test::gpuContext(),
+                              {.shaderDirectory = test::kShaderDir, .precision = precision});
         std::vector<StressSample> out;
         tracer.renderStressOutput(scene, camera, settings, out);
         return out;
@@ -111,8 +114,10 @@ struct CaseRun {
         ModeMetrics m = compareWithOracle(oracle, samples, a);
         // Robust's origin footprint for float, fp64's for double (the CPU
         // reference records no secondary rays).
-        const OriginFootprint footprint = originFootprintOf(a == kFloat ? Precision::Robust : Precision::Fp64);
-        const SecondaryStats s = checkSecondaryRays(scene, camera, oracle, samples, a, footprint, 2);
+        const OriginFootprint footprint =
+            originFootprintOf(a == kFloat ? Precision::Robust : Precision::Fp64);
+        const SecondaryStats s =
+            checkSecondaryRays(scene, camera, oracle, samples, a, footprint, 2);
         m.feelers = s.feelerPixels;
         m.acne = s.acne;
         m.shadowFlips = s.shadowFlips;
@@ -157,8 +162,9 @@ TEST(StressBounds, ATOffByAThousandUlpsFails) {
         {"double", {"thin_torus", "anisotropy", "grazing_silhouette"}},
     };
     for (const auto& [renderer, names] : cases) {
-        const Renderer& r = *std::find_if(std::begin(kRenderers), std::end(kRenderers),
-                                          [&](const Renderer& x) { return std::string(x.name) == renderer; });
+        const Renderer& r =
+            *std::find_if(std::begin(kRenderers), std::end(kRenderers),
+                          [&](const Renderer& x) { return std::string(x.name) == renderer; });
         for (const char* name : names) {
             SCOPED_TRACE(std::string(name) + " " + r.name);
             const CaseRun run(name);
@@ -242,7 +248,8 @@ TEST(StressBounds, WithoutTheOffsetAcneAndExitErrorsAreCounted) {
             const ModeMetrics broken = run.metrics(run.samples(precision), a);
             unsetenv("VKRAY_FAULT");
             EXPECT_FALSE(withinBounds(broken)) << describe(broken);
-            const size_t failures = std::string(name) == "acne_large_sphere" ? broken.acne : broken.exitErrors;
+            const size_t failures =
+                std::string(name) == "acne_large_sphere" ? broken.acne : broken.exitErrors;
             EXPECT_GT(failures, 0u) << describe(broken);
         }
     }
@@ -256,7 +263,8 @@ TEST(StressSuite, HasTheCasesTheIssueAsksFor) {
         EXPECT_FALSE(c.correct.empty()) << c.name;
     }
     // The stiff cases a shared blind spot of shader and oracle would hide.
-    for (const char* name : {"torus_tangent", "torus_hole", "sphere_tangent_1e5", "cube_edge_on_1e5"})
+    for (const char* name :
+         {"torus_tangent", "torus_hole", "sphere_tangent_1e5", "cube_edge_on_1e5"})
         EXPECT_EQ(findStressCases(kCasesDir, name).size(), 1u) << name;
     EXPECT_EQ(findStressCases(kCasesDir, "torus").size(), 3u);
     EXPECT_THROW(findStressCases(kCasesDir, "no-such-case"), Error);
@@ -273,9 +281,9 @@ protected:
 };
 
 TEST_F(StressHeader, ReadsKeysAndContinuations) {
-    const StressCase c = readStressCase(write(
-        "! stress: title\n! stiff: first\n!   second\n! correct: t = 1\n! naive: fails\n"
-        "sphere\n! stress: not part of the header\n"));
+    const StressCase c = readStressCase(
+        write("! stress: title\n! stiff: first\n!   second\n! correct: t = 1\n! naive: fails\n"
+              "sphere\n! stress: not part of the header\n"));
     EXPECT_EQ(c.title, "title");
     EXPECT_EQ(c.stiff, "first second");
     EXPECT_EQ(c.correct, "t = 1");
@@ -288,7 +296,8 @@ TEST_F(StressHeader, RejectsMissingKeysAndBadValues) {
         readStressCase(write("! stress: t\n! stiff: s\n! correct: c\n! naive: maybe\n"));
         FAIL();
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find(".sdl:4: 'naive:' takes fails or passes"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find(".sdl:4: 'naive:' takes fails or passes"),
+                  std::string::npos)
             << e.what();
     }
 }
@@ -350,7 +359,8 @@ TEST(StressReport, OneRowPerCaseAndModeInCsvJsonAndHtml) {
         withoutNamespaces.erase(at, svgNamespace.size());
     EXPECT_EQ(withoutNamespaces.find("http"), std::string::npos);
     size_t svgs = 0;
-    for (size_t at = html.find("<svg"); at != std::string::npos; at = html.find("<svg", at + 1)) ++svgs;
+    for (size_t at = html.find("<svg"); at != std::string::npos; at = html.find("<svg", at + 1))
+        ++svgs;
     EXPECT_EQ(svgs, cases.size());
     EXPECT_NE(html.find("far_sphere_silhouette"), std::string::npos);
 }

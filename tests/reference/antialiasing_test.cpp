@@ -2,12 +2,12 @@
 // mean colour, the AOVs of sample 0, and the same image for the same seed.
 #include "reference/reference_tracer.h"
 
-#include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
+#include "util/error.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -148,7 +148,9 @@ TEST(AntiAliasing, SamplesTracedOneAtATimeAverageToTheWhole) {
         }
     }
     for (size_t i = 0; i < whole.pixelCount(); ++i)
-        for (int c = 0; c < 3; ++c) ASSERT_NEAR(sum[i][c] / 5, whole.color[i][c], 1e-6 * std::max(1.0f, whole.color[i][c])) << i;
+        for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(sum[i][c] / 5, whole.color[i][c], 1e-6 * std::max(1.0f, whole.color[i][c]))
+                << i;
 }
 
 TEST(AntiAliasing, RefusesSamplesBeyondThePixels) {

@@ -8,8 +8,8 @@
 #include "reference_test_util.h"
 #include "util/error.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <cmath>
 #include <memory>
@@ -62,9 +62,9 @@ TEST(Csg, UnionOfOverlappingSpheres) {
 TEST(Csg, IntersectionIsTheLens) {
     // The lens of the same two spheres: in through the second sphere's left
     // side (x = -0.5, t = 4.5), out through the first's right (x = 0.5).
-    const SceneObject lens = boolean(ShapeType::Intersection,
-                                     placed(ShapeType::Sphere, {-0.5, 0, 0}),
-                                     placed(ShapeType::Sphere, {0.5, 0, 0}));
+    const SceneObject lens =
+        boolean(ShapeType::Intersection, placed(ShapeType::Sphere, {-0.5, 0, 0}),
+                placed(ShapeType::Sphere, {0.5, 0, 0}));
     const SpanList spans = objectSpans(kNoMeshes, lens, {{-5, 0, 0}, {1, 0, 0}});
     ASSERT_EQ(spans.size(), 1u);
     EXPECT_NEAR(spans[0].enter.t, 4.5, kTol);
@@ -94,9 +94,9 @@ TEST(Csg, HollowSphereFromInsideTheShell) {
     // A radius-2 sphere minus the unit sphere: along x from -5 the shell is
     // [3, 4] and [6, 7]. The hollow's walls carry the inner sphere's normal
     // negated: pointing into the hollow, away from the solid.
-    const SceneObject hollow = boolean(ShapeType::Difference,
-                                       placed(ShapeType::Sphere, {0, 0, 0}, {2, 2, 2}),
-                                       placed(ShapeType::Sphere, {0, 0, 0}));
+    const SceneObject hollow =
+        boolean(ShapeType::Difference, placed(ShapeType::Sphere, {0, 0, 0}, {2, 2, 2}),
+                placed(ShapeType::Sphere, {0, 0, 0}));
     const Ray ray{{-5, 0, 0}, {1, 0, 0}};
     const SpanList spans = objectSpans(kNoMeshes, hollow, ray);
     ASSERT_EQ(spans.size(), 2u);
@@ -133,7 +133,7 @@ TEST(Csg, NestedBooleans) {
     glm::dmat4 turn(0.0), back(0.0);
     turn[0] = {0, 0, -1, 0};  // generic x -> world -z
     turn[1] = {0, 1, 0, 0};
-    turn[2] = {1, 0, 0, 0};   // generic z -> world x
+    turn[2] = {1, 0, 0, 0};  // generic z -> world x
     turn[3] = {0.75, 0, 0, 1};
     back[0] = {0, 0, 1, 0};
     back[1] = {0, 1, 0, 0};
@@ -196,11 +196,12 @@ TEST(Csg, TouchingSpansMerge) {
 }
 
 TEST(Csg, AThinResultFarAwayIsNoSliver) {
-    // Two cube slabs 6e-6 thick, side by side, seen face-on from 2.2e4 away: one span 6e-6 long, 2.7e-10 of t. Ends within 1e-9 of
-    // t were once taken as one, and the span removed as a sliver (where the
-    // GPU drew the slab).
-    const SceneObject slab = boolean(ShapeType::Union, placed(ShapeType::Cube, {0, 0, 0}, {1, 1, 3e-6}),
-                                     placed(ShapeType::Cube, {0.5, 0, 0}, {1, 1, 3e-6}));
+    // Two cube slabs 6e-6 thick, side by side, seen face-on from 2.2e4 away: one span 6e-6
+    // long, 2.7e-10 of t. Ends within 1e-9 of t were once taken as one, and the span removed as a
+    // sliver (where the GPU drew the slab).
+    const SceneObject slab =
+        boolean(ShapeType::Union, placed(ShapeType::Cube, {0, 0, 0}, {1, 1, 3e-6}),
+                placed(ShapeType::Cube, {0.5, 0, 0}, {1, 1, 3e-6}));
     const SpanList spans = objectSpans(kNoMeshes, slab, {{0.2, 0.1, 2.2e4}, {0, 0, -1}});
     ASSERT_EQ(spans.size(), 1u);
     EXPECT_NEAR(spans[0].enter.t, 2.2e4 - 3e-6, 1e-9);
@@ -287,9 +288,9 @@ TEST(Csg, OperandWithoutAnInsideIsRefusedAtItsPlace) {
     SceneObject open = makeObject(ShapeType::Mesh);
     open.mesh = 0;
     open.loc = {file, 9, 1};
-    const SceneObject nested = boolean(
-        ShapeType::Difference, makeObject(ShapeType::Sphere),
-        boolean(ShapeType::Intersection, makeObject(ShapeType::Cube), open));
+    const SceneObject nested =
+        boolean(ShapeType::Difference, makeObject(ShapeType::Sphere),
+                boolean(ShapeType::Intersection, makeObject(ShapeType::Cube), open));
     EXPECT_EQ(refusal(scene, nested),
               "scene.sdl:9:1: error: 'mesh' has no inside and cannot be an operand of "
               "'intersection' (ball.3vn is not a closed surface)");
@@ -345,8 +346,8 @@ void collectEnds(const SceneObject& object, const Ray& ray, std::vector<double>&
 }
 
 SceneObject randomPrimitive(test::Random& random) {
-    const ShapeType types[] = {ShapeType::Sphere, ShapeType::Cube, ShapeType::Cylinder,
-                               ShapeType::Cone, ShapeType::Torus, ShapeType::Plane};
+    const ShapeType types[] = {ShapeType::Sphere, ShapeType::Cube,  ShapeType::Cylinder,
+                               ShapeType::Cone,   ShapeType::Torus, ShapeType::Plane};
     const ShapeType type = types[random.index(random.uniform(0, 1) < 0.1 ? 6 : 5)];
     // M = T R S with R orthonormal, so M^-1 = S^-1 R^T T^-1.
     const glm::dvec3 a = random.direction();

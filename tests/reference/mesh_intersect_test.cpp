@@ -6,9 +6,9 @@
 
 #include "reference_test_util.h"
 
+#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
-#include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
@@ -22,8 +22,8 @@ using test::expectSameDirection;
 constexpr double kTol = 1e-12;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-std::optional<TriangleHit> hitTriangle(const Ray& ray, const glm::dvec3& p0,
-                                       const glm::dvec3& p1, const glm::dvec3& p2) {
+std::optional<TriangleHit> hitTriangle(const Ray& ray, const glm::dvec3& p0, const glm::dvec3& p1,
+                                       const glm::dvec3& p2) {
     return intersectTriangle(WatertightRay(ray), p0, p1, p2, 0, kInf);
 }
 
@@ -43,10 +43,10 @@ TEST(MeshTriangle, HitWithBarycentrics) {
     EXPECT_NEAR(hit->t, 0.5, kTol);
     EXPECT_FALSE(hit->entering);
 
-    EXPECT_FALSE(hitTriangle({{0.8, 0.8, 1}, {0, 0, -1}}, p0, p1, p2));    // beside it
-    EXPECT_FALSE(hitTriangle({{0.2, 0.3, 1}, {0, 0, 1}}, p0, p1, p2));     // behind
-    EXPECT_FALSE(hitTriangle({{-1, 0.2, 0}, {1, 0, 0}}, p0, p1, p2));      // in its plane
-    EXPECT_FALSE(hitTriangle({{0.2, 0.3, 1}, {0, 0, 0}}, p0, p1, p2));     // no direction
+    EXPECT_FALSE(hitTriangle({{0.8, 0.8, 1}, {0, 0, -1}}, p0, p1, p2));  // beside it
+    EXPECT_FALSE(hitTriangle({{0.2, 0.3, 1}, {0, 0, 1}}, p0, p1, p2));   // behind
+    EXPECT_FALSE(hitTriangle({{-1, 0.2, 0}, {1, 0, 0}}, p0, p1, p2));    // in its plane
+    EXPECT_FALSE(hitTriangle({{0.2, 0.3, 1}, {0, 0, 0}}, p0, p1, p2));   // no direction
     // tMin and tMax are open.
     EXPECT_FALSE(intersectTriangle(WatertightRay({{0.2, 0.3, 1}, {0, 0, -1}}), p0, p1, p2, 1, 2));
     EXPECT_FALSE(intersectTriangle(WatertightRay({{0.2, 0.3, 1}, {0, 0, -1}}), p0, p1, p2, 0, 1));
@@ -114,8 +114,8 @@ TEST(MeshTriangle, RayExactlyThroughAnEdgeOrAVertex) {
     // origin.
     const glm::dvec3 o(0, 0, 0), x(1, 0, 0), xy(1, 1, 0), y(0, 1, 0);
     for (const glm::dvec3& p : {glm::dvec3(0.5, 0.5, 0), glm::dvec3(0.25, 0.25, 0)}) {
-        for (const glm::dvec3& d : {glm::dvec3(0, 0, -1), glm::dvec3(0, 0, 1),
-                                    glm::normalize(glm::dvec3(1, 2, -3))}) {
+        for (const glm::dvec3& d :
+             {glm::dvec3(0, 0, -1), glm::dvec3(0, 0, 1), glm::normalize(glm::dvec3(1, 2, -3))}) {
             const WatertightRay ray({p - 2.0 * d, d});
             const int hits = int(bool(intersectTriangle(ray, o, x, xy, 0, kInf))) +
                              int(bool(intersectTriangle(ray, o, xy, y, 0, kInf)));
@@ -123,8 +123,8 @@ TEST(MeshTriangle, RayExactlyThroughAnEdgeOrAVertex) {
         }
     }
     const glm::dvec3 fan[4] = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
-    for (const glm::dvec3& d : {glm::dvec3(0, 0, -1), glm::dvec3(0, 0, 1),
-                                glm::normalize(glm::dvec3(0, 1, -1))}) {
+    for (const glm::dvec3& d :
+         {glm::dvec3(0, 0, -1), glm::dvec3(0, 0, 1), glm::normalize(glm::dvec3(0, 1, -1))}) {
         const WatertightRay ray({-2.0 * d, d});
         int hits = 0;
         for (int k = 0; k < 4; ++k)
@@ -135,20 +135,19 @@ TEST(MeshTriangle, RayExactlyThroughAnEdgeOrAVertex) {
 
 TEST(MeshTriangle, NeedleTriangleIsHit) {
     // NUMERICS stress case 17: an area of 5e-8; an epsilon on det would reject it.
-    const auto hit = hitTriangle({{0.5, 0.5e-7, 1}, {0, 0, -1}}, {0, 0, 0}, {1, 0, 0},
-                                 {0.5, 1e-7, 0});
+    const auto hit =
+        hitTriangle({{0.5, 0.5e-7, 1}, {0, 0, -1}}, {0, 0, 0}, {1, 0, 0}, {0.5, 1e-7, 0});
     ASSERT_TRUE(hit);
     EXPECT_NEAR(hit->t, 1, kTol);
     EXPECT_NEAR(hit->b2, 0.5, 1e-9);
-    EXPECT_FALSE(hitTriangle({{0.5, 1.5e-7, 1}, {0, 0, -1}}, {0, 0, 0}, {1, 0, 0},
-                             {0.5, 1e-7, 0}));
+    EXPECT_FALSE(hitTriangle({{0.5, 1.5e-7, 1}, {0, 0, -1}}, {0, 0, 0}, {1, 0, 0}, {0.5, 1e-7, 0}));
 }
 
 TriangleMesh oneTriangle() {
     TriangleMesh mesh;
     mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-    mesh.normals = {{0, 0, 1}, glm::normalize(glm::dvec3(1, 0, 1)),
-                    glm::normalize(glm::dvec3(0, 1, 1))};
+    mesh.normals = {
+        {0, 0, 1}, glm::normalize(glm::dvec3(1, 0, 1)), glm::normalize(glm::dvec3(0, 1, 1))};
     mesh.triangles = {{{0, 1, 2}, {0, 1, 2}}};
     finishMesh(mesh);
     return mesh;
@@ -176,8 +175,8 @@ TEST(Mesh, BvhMatchesBruteForce) {
     int hits = 0;
     for (int i = 0; i < 10000; ++i) {
         const bool inside = i % 4 == 0;
-        const glm::dvec3 origin = inside ? random.inBox(glm::dvec3(-0.5), glm::dvec3(0.5))
-                                         : 3.0 * random.direction();
+        const glm::dvec3 origin =
+            inside ? random.inBox(glm::dvec3(-0.5), glm::dvec3(0.5)) : 3.0 * random.direction();
         const glm::dvec3 target = random.inBox(glm::dvec3(-1.2), glm::dvec3(1.2));
         const Ray ray{origin, (target - origin) * random.uniform(0.1, 10)};
         const double tMin = i % 3 == 0 ? 0.3 : 0;

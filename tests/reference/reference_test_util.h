@@ -5,9 +5,9 @@
 #include "scene/scene.h"
 #include "scene/triangle_mesh.h"
 
+#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
-#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
@@ -24,8 +24,7 @@ inline void expectNear(const glm::dvec3& actual, const glm::dvec3& expected, dou
 }
 
 // The two vectors point the same way (unit vectors within tol).
-inline void expectSameDirection(const glm::dvec3& actual, const glm::dvec3& expected,
-                                double tol) {
+inline void expectSameDirection(const glm::dvec3& actual, const glm::dvec3& expected, double tol) {
     expectNear(glm::normalize(actual), glm::normalize(expected), tol);
 }
 
@@ -115,7 +114,7 @@ inline TriangleMesh tessellatedSphere(int rings, int segments) {
         for (int segment = 0; segment < segments; ++segment) {
             const std::uint32_t a = vertex(ring, segment), b = vertex(ring, segment + 1);
             const std::uint32_t c = vertex(ring + 1, segment), d = vertex(ring + 1, segment + 1);
-            if (ring > 0) add(a, c, b);           // z decreases with the ring: c, d lie below
+            if (ring > 0) add(a, c, b);  // z decreases with the ring: c, d lie below
             if (ring < rings - 1) add(b, c, d);
         }
     }

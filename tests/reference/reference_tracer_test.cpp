@@ -5,8 +5,8 @@
 #include "reference/reference_test_util.h"
 #include "util/error.h"
 
-#include <glm/matrix.hpp>
 #include <gtest/gtest.h>
+#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -168,14 +168,14 @@ Scene mixedScene() {
     rotateY90[3] = {0, 0, 0, 1};
     rotateYMinus90 = glm::transpose(rotateY90);  // a rotation's inverse, exactly
     SceneObject wall = makeObject(ShapeType::Plane, translation({-4, 0, 0}) * rotateY90,
-                              rotateYMinus90 * translation({4, 0, 0}));
+                                  rotateYMinus90 * translation({4, 0, 0}));
     wall.material.diffuse = {0.2, 0.7, 0.3};
     scene.objects.push_back(wall);
     scene.objects.push_back(makeObject(ShapeType::Cube,
-                                   translation({2.5, 0, 0}) * scaling({0.5, 1, 0.75}),
-                                   scaling({2, 1, 1 / 0.75}) * translation({-2.5, 0, 0})));
-    scene.objects.push_back(makeObject(ShapeType::Square, translation({-2.5, 1, 0.5}),
-                                   translation({2.5, -1, -0.5})));
+                                       translation({2.5, 0, 0}) * scaling({0.5, 1, 0.75}),
+                                       scaling({2, 1, 1 / 0.75}) * translation({-2.5, 0, 0})));
+    scene.objects.push_back(
+        makeObject(ShapeType::Square, translation({-2.5, 1, 0.5}), translation({2.5, -1, -0.5})));
     scene.lights.push_back({{-5, 5, 5}, {0.3, 0.3, 0.9}, {}});
     return scene;
 }

@@ -7,8 +7,8 @@
 #include "reference/reference_tracer.h"
 #include "reference_test_util.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <memory>
 
@@ -25,10 +25,10 @@ SceneObject randomObject(test::Random& random, ShapeType type) {
     const glm::dmat3 rotation(a, b, glm::cross(a, b));
     const glm::dvec3 scale = random.inBox(glm::dvec3(0.2), glm::dvec3(2));
     const glm::dvec3 shift = random.inBox(glm::dvec3(-50), glm::dvec3(50));
-    SceneObject object = makeObject(
-        type, test::translation(shift) * glm::dmat4(rotation) * test::scaling(scale),
-        test::scaling(1.0 / scale) * glm::dmat4(glm::transpose(rotation)) *
-            test::translation(-shift));
+    SceneObject object =
+        makeObject(type, test::translation(shift) * glm::dmat4(rotation) * test::scaling(scale),
+                   test::scaling(1.0 / scale) * glm::dmat4(glm::transpose(rotation)) *
+                       test::translation(-shift));
     object.taper = random.uniform(0, 1.5);
     return object;
 }
@@ -36,8 +36,9 @@ SceneObject randomObject(test::Random& random, ShapeType type) {
 Scene randomScene(std::uint64_t seed, int count) {
     test::Random random(seed);
     Scene scene;
-    const ShapeType types[] = {ShapeType::Sphere, ShapeType::Cube, ShapeType::Cylinder,
-                               ShapeType::Cone, ShapeType::TaperedCylinder, ShapeType::Torus};
+    const ShapeType types[] = {ShapeType::Sphere,          ShapeType::Cube,
+                               ShapeType::Cylinder,        ShapeType::Cone,
+                               ShapeType::TaperedCylinder, ShapeType::Torus};
     for (int i = 0; i < count; ++i) scene.objects.push_back(randomObject(random, types[i % 6]));
     // A few booleans (one of them unbounded) and a plane far below.
     for (int i = 0; i < 20; ++i) {

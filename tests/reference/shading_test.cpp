@@ -8,8 +8,8 @@
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <cmath>
 #include <numbers>
@@ -52,8 +52,7 @@ const char* kFloorAndBall =
 
 Scene floorAndBall(double transparency) {
     std::string text = kFloorAndBall;
-    text.replace(text.find("TRANSPARENCY"), 12,
-                 "transparency " + std::to_string(transparency));
+    text.replace(text.find("TRANSPARENCY"), 12, "transparency " + std::to_string(transparency));
     return sceneOf(text);
 }
 
@@ -88,7 +87,7 @@ TEST(Shadows, TwoTransparentOccludersMultiply) {
     expectNear(shader.lightThrough({0, 0, 0.5}, {0, 0, 4}), glm::dvec3(0.5), 0);
     expectNear(shader.lightThrough({0, 0, 0.5}, {0, 0, 7}), glm::dvec3(0.25), 0);
     expectNear(shader.lightThrough({0, 0, 0.5}, {0, 0, 12}), glm::dvec3(0), 0);  // opaque third
-    expectNear(shader.lightThrough({3, 0, 0.5}, {3, 0, 12}), glm::dvec3(1), 0);   // beside them
+    expectNear(shader.lightThrough({3, 0, 0.5}, {3, 0, 12}), glm::dvec3(1), 0);  // beside them
 }
 
 TEST(Shadows, ABooleanCountsAsOneObject) {
@@ -99,8 +98,8 @@ TEST(Shadows, ABooleanCountsAsOneObject) {
     const SceneIntersector joinedBvh(joined), apartBvh(apart);
     expectNear(WhittedShader(joined, joinedBvh).lightThrough({0, 0, 0}, {0, 0, 10}),
                glm::dvec3(0.5), 0);
-    expectNear(WhittedShader(apart, apartBvh).lightThrough({0, 0, 0}, {0, 0, 10}),
-               glm::dvec3(0.25), 0);
+    expectNear(WhittedShader(apart, apartBvh).lightThrough({0, 0, 0}, {0, 0, 10}), glm::dvec3(0.25),
+               0);
 }
 
 TEST(Shadows, ALightBehindTheSurfaceAddsNothing) {
@@ -112,8 +111,8 @@ TEST(Shadows, ALightBehindTheSurfaceAddsNothing) {
 TEST(Shadows, FeelersLeaveFarFromTheOriginWithoutHittingTheirOwnSurface) {
     // A lit sphere far from the origin: every hit seen from the light's side
     // must be lit (a feeler that hit its own surface would shadow it).
-    const Scene scene = sceneOf(
-        "light 100000 0 100010 1 1 1 translate 100000 0 0 scale 3 3 3 sphere");
+    const Scene scene =
+        sceneOf("light 100000 0 100010 1 1 1 translate 100000 0 0 scale 3 3 3 sphere");
     for (int i = 0; i < 20; ++i) {
         const double x = 100000 - 1.5 + 0.15 * i;
         const glm::dvec3 color = seen(scene, {x, 0.1 * i, 100}, {x, 0.1 * i, 0});
@@ -128,7 +127,7 @@ TEST(Shadows, FeelersLeaveFarFromTheOriginWithoutHittingTheirOwnSurface) {
 // randomly placed, rotated and stretched shapes.
 TEST(SecondaryRays, NeverMeetTheirOwnConvexSurfaceAgain) {
     test::Random random(20261123);
-    const char* shapes[] = {"sphere", "cube", "cylinder", "cone", "taperedCylinder 0.5",
+    const char* shapes[] = {"sphere",     "cube",        "cylinder", "cone", "taperedCylinder 0.5",
                             "octahedron", "dodecahedron"};
     int tested = 0;
     for (const char* shape : shapes) {
@@ -147,17 +146,18 @@ TEST(SecondaryRays, NeverMeetTheirOwnConvexSurfaceAgain) {
                 const SceneIntersector intersector(scene);
                 for (int i = 0; i < 50; ++i) {
                     const glm::dvec3 from = centre + 10 * scale * random.direction();
-                    const glm::dvec3 to = centre + scale * random.inBox(glm::dvec3(-0.5),
-                                                                        glm::dvec3(0.5));
+                    const glm::dvec3 to =
+                        centre + scale * random.inBox(glm::dvec3(-0.5), glm::dvec3(0.5));
                     const Ray ray{from, glm::normalize(to - from)};
                     const std::optional<WorldHit> hit = intersector.closestHit(ray, 0.0);
                     if (!hit) continue;
                     const glm::dvec3 r = reflectDirection(ray.direction, hit->normal);
-                    if (glm::dot(r, hit->geometricNormal) <= 0) continue;  // grazing: r along the face
+                    if (glm::dot(r, hit->geometricNormal) <= 0)
+                        continue;  // grazing: r along the face
                     const Ray reflected{offsetRayOrigin(hit->point, hit->geometricNormal, r), r};
                     const std::optional<WorldHit> again = intersector.closestHit(reflected, 0.0);
-                    EXPECT_FALSE(again) << shape << " at distance " << distance << ": hit again at t "
-                                        << again->t;
+                    EXPECT_FALSE(again)
+                        << shape << " at distance " << distance << ": hit again at t " << again->t;
                     ++tested;
                 }
             }
@@ -213,8 +213,8 @@ TEST(Refraction, SnellAndTotalInternalReflectionForOneSurface) {
     expectNear(*t, {sin2, 0, -std::sqrt(1 - sin2 * sin2)}, 1e-15);
     // Leaving glass for air (eta = 1 / 0.5 = 2): the critical angle is 30 degrees.
     const auto at = [&](double incidence) {
-        return refractDirection({std::sin(degrees(incidence)), 0, -std::cos(degrees(incidence))},
-                                m, 2.0);
+        return refractDirection({std::sin(degrees(incidence)), 0, -std::cos(degrees(incidence))}, m,
+                                2.0);
     };
     EXPECT_TRUE(at(29.9));
     EXPECT_FALSE(at(30.1));
@@ -256,11 +256,12 @@ TEST(Refraction, ThroughAGlassSlabTheRayLeavesParallelAndShifted) {
     const glm::dvec3 offLine = (exit - entry) - glm::dot(exit - entry, d) * d;
     EXPECT_NEAR(glm::length(offLine), shift, 1e-12);
     const auto slabWithMarkerAt = [](const glm::dvec3& marker) {
-        return sceneOf("background 0 0 0 minTransparency 0.1 ambient 0 0 0 diffuse 0 0 0 "
-                       "transparency 0.9 speedOfLight 0.6 push scale 10 10 0.5 cube pop "
-                       "defaultMaterials ambient 0 0 0 diffuse 0 0 0 emissive 1 1 1 translate " +
-                       std::to_string(marker.x) + " 0 " + std::to_string(marker.z) +
-                       " scale 0.05 0.05 0.05 sphere");
+        return sceneOf(
+            "background 0 0 0 minTransparency 0.1 ambient 0 0 0 diffuse 0 0 0 "
+            "transparency 0.9 speedOfLight 0.6 push scale 10 10 0.5 cube pop "
+            "defaultMaterials ambient 0 0 0 diffuse 0 0 0 emissive 1 1 1 translate " +
+            std::to_string(marker.x) + " 0 " + std::to_string(marker.z) +
+            " scale 0.05 0.05 0.05 sphere");
     };
     const glm::dvec3 onRefracted = exit + 50.0 * d;
     const glm::dvec3 onStraight = entry + (50.0 + glm::dot(exit - entry, d)) * d;
@@ -283,11 +284,12 @@ TEST(Refraction, ThroughAGlassSphereMatchesSnellByHand) {
     // The CPU's own first step agrees with the angles.
     expectNear(*refractDirection({0, 0, -1}, entry, 0.5), inside, 1e-15);
     const auto sphereWithMarkerAt = [](const glm::dvec3& marker) {
-        return sceneOf("background 0 0 0 minTransparency 0.1 ambient 0 0 0 diffuse 0 0 0 "
-                       "transparency 0.9 speedOfLight 0.5 sphere "
-                       "defaultMaterials ambient 0 0 0 diffuse 0 0 0 emissive 1 1 1 translate " +
-                       std::to_string(marker.x) + " 0 " + std::to_string(marker.z) +
-                       " scale 0.02 0.02 0.02 sphere");
+        return sceneOf(
+            "background 0 0 0 minTransparency 0.1 ambient 0 0 0 diffuse 0 0 0 "
+            "transparency 0.9 speedOfLight 0.5 sphere "
+            "defaultMaterials ambient 0 0 0 diffuse 0 0 0 emissive 1 1 1 translate " +
+            std::to_string(marker.x) + " 0 " + std::to_string(marker.z) +
+            " scale 0.02 0.02 0.02 sphere");
     };
     const glm::dvec3 from(0.5, 0, 5);
     expectNear(seen(sphereWithMarkerAt(exit + 20.0 * out), from, entry), glm::dvec3(0.81), 1e-12);

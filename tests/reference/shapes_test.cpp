@@ -4,12 +4,12 @@
 #include "reference/shapes.h"
 
 #include "reference/object_intersect.h"
-#include "reference/scene_intersector.h"
 #include "reference/reference_test_util.h"
+#include "reference/scene_intersector.h"
 #include "util/error.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <cmath>
 #include <string>
@@ -315,8 +315,8 @@ TEST(Object, NonUniformScaleUsesTheInverseTranspose) {
     // docs/numerics-background.md, hand-worked ray 18: scale (1e3, 1, 1e-3). The generic point
     // (0, 1/√2, 1/√2) is the world point (0, 1/√2, 1e-3/√2) with normal
     // S^-1 (0, 1, 1)/√2 ∝ (0, 1, 1e3); M itself would give (0, 1, 1e-3).
-    const SceneObject ellipsoid = makeObject(ShapeType::Sphere, scaling({1e3, 1, 1e-3}),
-                                         scaling({1e-3, 1, 1e3}));
+    const SceneObject ellipsoid =
+        makeObject(ShapeType::Sphere, scaling({1e3, 1, 1e-3}), scaling({1e-3, 1, 1e3}));
     const double r = 1 / std::sqrt(2.0);
     const auto hit = intersectObject(kNoMeshes, ellipsoid, 0, {{0, r, 10}, {0, 0, -1}}, 0);
     ASSERT_TRUE(hit);
@@ -344,8 +344,7 @@ TEST(Object, RotatedSquareStandsUpright) {
     // M = T(0,0,-3) R_z(90°) S(2,1,1): the square lies in z = -3 with its long
     // side turned onto y, spanning |x| <= 1, |y| <= 2.
     const glm::dmat4 M = translation({0, 0, -3}) * rotationZ90() * scaling({2, 1, 1});
-    const glm::dmat4 inverse =
-        scaling({0.5, 1, 1}) * rotationZMinus90() * translation({0, 0, 3});
+    const glm::dmat4 inverse = scaling({0.5, 1, 1}) * rotationZMinus90() * translation({0, 0, 3});
     const SceneObject square = makeObject(ShapeType::Square, M, inverse);
     const auto hit = intersectObject(kNoMeshes, square, 0, {{0.5, 1.9, 0}, {0, 0, -1}}, 0);
     ASSERT_TRUE(hit);
@@ -366,9 +365,9 @@ TEST(Object, MeshWithoutGeometryNamesItself) {
                   "scene.sdl:12:5: error: 'mesh' has no geometry loaded (call loadSceneGeometry)");
     }
     // A boolean needs its two operands (the reader always gives them).
-    EXPECT_THROW(intersectObject(kNoMeshes, makeObject(ShapeType::Union), 0, {{0, 0, 5}, {0, 0, -1}},
-                                 0),
-                 Error);
+    EXPECT_THROW(
+        intersectObject(kNoMeshes, makeObject(ShapeType::Union), 0, {{0, 0, 5}, {0, 0, -1}}, 0),
+        Error);
 }
 
 // ---- closest hit -----------------------------------------------------------

@@ -131,14 +131,14 @@ TEST(TaperedCylinder, FromInside) {
 }
 
 TEST(TaperedCylinder, Misses) {
-    EXPECT_FALSE(intersectTaperedCylinder({{0, 0, 1.5}, {1, 0, 0}}, 1, 0));   // above z = 1
-    EXPECT_FALSE(intersectTaperedCylinder({{-2, 0, -0.1}, {1, 0, 0}}, 1, 0)); // below z = 0
-    EXPECT_FALSE(intersectTaperedCylinder({{2, 0, 0.5}, {0, 1, 0}}, 1, 0));   // beside
-    EXPECT_FALSE(intersectTaperedCylinder({{2, 0, 0.5}, {1, 0, 0}}, 1, 0));   // behind
-    EXPECT_FALSE(intersectTaperedCylinder({{0.9, 0, 0.5}, {0, 1, 0}}, 0, 0)); // beside a cone
+    EXPECT_FALSE(intersectTaperedCylinder({{0, 0, 1.5}, {1, 0, 0}}, 1, 0));    // above z = 1
+    EXPECT_FALSE(intersectTaperedCylinder({{-2, 0, -0.1}, {1, 0, 0}}, 1, 0));  // below z = 0
+    EXPECT_FALSE(intersectTaperedCylinder({{2, 0, 0.5}, {0, 1, 0}}, 1, 0));    // beside
+    EXPECT_FALSE(intersectTaperedCylinder({{2, 0, 0.5}, {1, 0, 0}}, 1, 0));    // behind
+    EXPECT_FALSE(intersectTaperedCylinder({{0.9, 0, 0.5}, {0, 1, 0}}, 0, 0));  // beside a cone
     // The mirror nappe of a cone (z > 1) is not part of it.
     EXPECT_FALSE(intersectTaperedCylinder({{-5, 0, 1.5}, {1, 0, 0}}, 0, 0));
-    EXPECT_FALSE(intersectTaperedCylinder({{0, 0, 5}, {0, 0, 0}}, 1, 0));     // no direction
+    EXPECT_FALSE(intersectTaperedCylinder({{0, 0, 5}, {0, 0, 0}}, 1, 0));  // no direction
 }
 
 TEST(TaperedCylinder, TMinIsOpen) {

@@ -11,8 +11,8 @@
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <cmath>
 #include <numbers>
@@ -32,9 +32,11 @@ constexpr double kPi = std::numbers::pi;
 // Text as if in scenes/, so data/texels.png is found. Only ambient light:
 // a hit shows k * ambient (1) * globalAmbient (1).
 Scene texturedScene(const std::string& shapes) {
-    Scene scene = parseSdl("background 0 0 0 globalAmbient 1 1 1 ambient 1 1 1 diffuse 0 0 0\n"
-                           "makePixmap 0 data/texels.png\n" + shapes,
-                           VKRAY_SOURCE_DIR "/scenes/textures.sdl", {});
+    Scene scene = parseSdl(
+        "background 0 0 0 globalAmbient 1 1 1 ambient 1 1 1 diffuse 0 0 0\n"
+        "makePixmap 0 data/texels.png\n" +
+            shapes,
+        VKRAY_SOURCE_DIR "/scenes/textures.sdl", {});
     loadSceneGeometry(scene, false, nullptr);
     return scene;
 }
@@ -59,12 +61,12 @@ glm::dvec2 uvOfTexel(int x, int y) {
 TEST(Textures, CheckerboardCellsShiftedByHalfACell) {
     const glm::dvec3 odd(0.2, 0.3, 0.4);
     // size 0.5: cell = floor(2x + 0.5) + floor(2y + 0.5) + floor(2z + 0.5).
-    expectNear(checkerboard({0, 0, 0}, 0.5, odd), glm::dvec3(1), 0);       // 0: even
-    expectNear(checkerboard({0.3, 0, 0}, 0.5, odd), odd, 0);               // 1: odd
-    expectNear(checkerboard({1, 0.3, 0.3}, 0.5, odd), glm::dvec3(1), 0);   // 2 + 1 + 1
-    expectNear(checkerboard({1, 0.3, 0.8}, 0.5, odd), odd, 0);             // 2 + 1 + 2
-    expectNear(checkerboard({-0.3, 0, 0}, 0.5, odd), odd, 0);              // -1: odd
-    expectNear(checkerboard({-0.3, -0.3, 0}, 0.5, odd), glm::dvec3(1), 0); // -2: even
+    expectNear(checkerboard({0, 0, 0}, 0.5, odd), glm::dvec3(1), 0);        // 0: even
+    expectNear(checkerboard({0.3, 0, 0}, 0.5, odd), odd, 0);                // 1: odd
+    expectNear(checkerboard({1, 0.3, 0.3}, 0.5, odd), glm::dvec3(1), 0);    // 2 + 1 + 1
+    expectNear(checkerboard({1, 0.3, 0.8}, 0.5, odd), odd, 0);              // 2 + 1 + 2
+    expectNear(checkerboard({-0.3, 0, 0}, 0.5, odd), odd, 0);               // -1: odd
+    expectNear(checkerboard({-0.3, -0.3, 0}, 0.5, odd), glm::dvec3(1), 0);  // -2: even
 }
 
 TEST(Textures, WoodRingsAboutTheZAxisShiftedByHalfARing) {
@@ -73,7 +75,7 @@ TEST(Textures, WoodRingsAboutTheZAxisShiftedByHalfARing) {
     const glm::dvec3 odd(0.55, 0.35, 0.15);
     expectNear(woodRings({0.02, 0, 7}, 0.1, odd), glm::dvec3(1), 0);   // 0.2 + 0.5: ring 0
     expectNear(woodRings({0.06, 0, 0}, 0.1, odd), odd, 0);             // 0.6 + 0.5: ring 1
-    expectNear(woodRings({0.09, 0.09, 0}, 0.1, odd), odd, 0);         // r = 0.127: ring 1
+    expectNear(woodRings({0.09, 0.09, 0}, 0.1, odd), odd, 0);          // r = 0.127: ring 1
     expectNear(woodRings({0, -0.22, 0}, 0.1, odd), glm::dvec3(1), 0);  // 2.2 + 0.5: ring 2
     expectNear(woodRings({0.3, 0.4, 0}, 0.3, odd), glm::dvec3(1), 0);  // r = 0.5: ring 2 (2.17)
     expectNear(woodRings({0.3, 0.4, 0}, 0.4, odd), odd, 0);            // 1.25 + 0.5: ring 1
@@ -86,10 +88,10 @@ TEST(Textures, WoodRingBoundariesMissTheCylinderWall) {
     const glm::dvec3 odd(0.55, 0.35, 0.15), white(1);
     for (const glm::dvec3& g : {glm::dvec3(1, 0, 0.5), glm::dvec3(0.6, -0.8, 0),
                                 glm::dvec3(0.96, 0, 1), glm::dvec3(0, 1.04, 0)})
-        expectNear(woodRings(g, 0.1, odd), white, 0);  // 9.6 .. 10.4, + 0.5: ring 10
+        expectNear(woodRings(g, 0.1, odd), white, 0);         // 9.6 .. 10.4, + 0.5: ring 10
     expectNear(woodRings({0.9, 0, 0}, 0.25, odd), white, 0);  // 3.6 + 0.5: ring 4
     expectNear(woodRings({-1, 0, 0}, 0.25, odd), white, 0);
-    expectNear(woodRings({0, 1.1, 0}, 0.25, odd), white, 0);  // 4.4 + 0.5
+    expectNear(woodRings({0, 1.1, 0}, 0.25, odd), white, 0);    // 4.4 + 0.5
     expectNear(woodRings({0, -1, 0.3}, 1.0 / 3, odd), odd, 0);  // 3 + 0.5: ring 3
     expectNear(woodRings({0.8, 0.6, 0}, 0.2, odd), odd, 0);     // 5 + 0.5: ring 5
     // The axis (a cone's apex) is in the middle of ring 0.
@@ -114,8 +116,7 @@ TEST(Textures, UvOfEveryShape) {
     expectUv(surfaceUv(ShapeType::Square, {0.5, -0.5, 0}, none), {0.75, 0.25});
     // Cylinder wall: around and up; caps: like the square.
     expectUv(surfaceUv(ShapeType::Cylinder, {-1, 0, 0.25}, {-1, 0, 0}), {1, 0.25});
-    expectUv(surfaceUv(ShapeType::TaperedCylinder, {0, -0.5, 0.5}, {0, -0.5, 0.25}),
-             {0.25, 0.5});
+    expectUv(surfaceUv(ShapeType::TaperedCylinder, {0, -0.5, 0.5}, {0, -0.5, 0.25}), {0.25, 0.5});
     expectUv(surfaceUv(ShapeType::Cylinder, {0.5, 0, 1}, {0, 0, 1}), {0.75, 0.5});
     expectUv(surfaceUv(ShapeType::Cone, {0, 0.5, 0}, {0, 0, -1}), {0.5, 0.75});
     // Cube: the face of the largest |g|, the other two coordinates in order.
@@ -134,10 +135,11 @@ TEST(Textures, NearestTexelWrapsUAndClampsV) {
     const Scene scene = texturedScene("");
     const Image& image = *findPixmap(scene, 0)->image;
     for (int y = 0; y < 4; ++y)
-        for (int x = 0; x < 8; ++x) expectNear(nearestTexel(image, uvOfTexel(x, y)), texel(x, y), 0);
-    expectNear(nearestTexel(image, {0, 1}), texel(0, 0), 0);         // top-left corner
-    expectNear(nearestTexel(image, {1, 0}), texel(0, 3), 0);         // u = 1 wraps to 0
-    expectNear(nearestTexel(image, {-0.01, 1.5}), texel(7, 0), 0);   // u wraps, v clamps
+        for (int x = 0; x < 8; ++x)
+            expectNear(nearestTexel(image, uvOfTexel(x, y)), texel(x, y), 0);
+    expectNear(nearestTexel(image, {0, 1}), texel(0, 0), 0);        // top-left corner
+    expectNear(nearestTexel(image, {1, 0}), texel(0, 3), 0);        // u = 1 wraps to 0
+    expectNear(nearestTexel(image, {-0.01, 1.5}), texel(7, 0), 0);  // u wraps, v clamps
     expectNear(nearestTexel(image, {2.3, -4}), texel(2, 3), 0);
 }
 
@@ -149,8 +151,8 @@ TEST(Textures, NoTextureIsWhite) {
 TEST(Textures, CheckerboardOnATransformedCube) {
     // The cube moved and stretched: the texture follows its generic space.
     // World (10 + 2 gx, gy, gz): the ray along -x meets the face gx = 1.
-    const Scene scene = texturedScene(
-        "texture 1 parameters 4 0.5 0.2 0.3 0.4 translate 10 0 0 scale 2 1 1 cube");
+    const Scene scene =
+        texturedScene("texture 1 parameters 4 0.5 0.2 0.3 0.4 translate 10 0 0 scale 2 1 1 cube");
     expectNear(seen(scene, {20, 0.3, 0.3}, {12, 0.3, 0.3}), glm::dvec3(1), 0);
     expectNear(seen(scene, {20, 0.3, 0.8}, {12, 0.3, 0.8}), glm::dvec3(0.2, 0.3, 0.4), 0);
 }
@@ -189,8 +191,8 @@ TEST(Textures, ImageOnEachFaceOfACube) {
 TEST(Textures, ImageFollowsTheOperandHitInCsg) {
     // A textured sphere cut by an untextured cube: where the sphere's surface
     // shows, its texture does; the cube's cut face stays white.
-    const Scene scene = texturedScene(
-        "difference texture 3 parameters 1 0 sphere texture 0 translate 0 0 1 cube");
+    const Scene scene =
+        texturedScene("difference texture 3 parameters 1 0 sphere texture 0 translate 0 0 1 cube");
     // The cut face z = 0 seen from above: the cube's (subtracted) surface.
     expectNear(seen(scene, {0.1, 0.1, 5}, {0.1, 0.1, 0}), glm::dvec3(1), 0);
     // The sphere's lower half from below, next to the south pole (v near 0:

@@ -47,9 +47,9 @@ TEST(Quartic, DoubleRootIsReportedOnce) {
 }
 
 TEST(Quartic, NoRealRootsAndLowerDegrees) {
-    EXPECT_TRUE(roots({1, 0, 0, 0, 1}, -10, 10).empty());     // x^4 + 1
+    EXPECT_TRUE(roots({1, 0, 0, 0, 1}, -10, 10).empty());                   // x^4 + 1
     EXPECT_EQ(roots({-2, 1, 0, 0, 0}, -10, 10), (std::vector<double>{2}));  // leading zeros
-    const std::vector<double> r = roots({2, -3, 1}, -10, 10);  // (x-1)(x-2)
+    const std::vector<double> r = roots({2, -3, 1}, -10, 10);               // (x-1)(x-2)
     ASSERT_EQ(r.size(), 2u);
     EXPECT_NEAR(r[0], 1, kTol);
     EXPECT_NEAR(r[1], 2, kTol);
@@ -59,10 +59,9 @@ TEST(Quartic, NoRealRootsAndLowerDegrees) {
 TEST(Quartic, CloseRootsAreSeparated) {
     // (x-1)(x-1.000001)(x+2)(x-5): two roots 1e-6 apart.
     const double a = 1, b = 1.000001, c = -2, d = 5;
-    const std::vector<double> coeffs = {a * b * c * d,
-                                        -(a * b * c + a * b * d + a * c * d + b * c * d),
-                                        a * b + a * c + a * d + b * c + b * d + c * d,
-                                        -(a + b + c + d), 1};
+    const std::vector<double> coeffs = {
+        a * b * c * d, -(a * b * c + a * b * d + a * c * d + b * c * d),
+        a * b + a * c + a * d + b * c + b * d + c * d, -(a + b + c + d), 1};
     const std::vector<double> r = roots(coeffs, -10, 10);
     ASSERT_EQ(r.size(), 4u);
     EXPECT_NEAR(r[0], -2, 1e-12);

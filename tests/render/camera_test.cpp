@@ -1,9 +1,9 @@
 #include "render/camera.h"
 #include "util/error.h"
 
+#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
-#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>

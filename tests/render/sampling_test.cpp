@@ -31,9 +31,9 @@ TEST(Sampling, LowBias32MatchesPinnedValues) {
 
 TEST(Sampling, FirstValuesForSeedZeroPixelZero) {
     EXPECT_EQ(sampleRandom(0, 0, 0, 0), 0.0f);
-    EXPECT_EQ(sampleRandom(0, 0, 0, 1), 2359452.0f / 16777216.0f);   // h = 0x24009c6d
-    EXPECT_EQ(sampleRandom(0, 0, 1, 0), 5757736.0f / 16777216.0f);   // h = 0x57db2856
-    EXPECT_EQ(sampleRandom(0, 0, 1, 1), 11855066.0f / 16777216.0f);  // h = 0xb4e4da13
+    EXPECT_EQ(sampleRandom(0, 0, 0, 1), 2359452.0f / 16777216.0f);      // h = 0x24009c6d
+    EXPECT_EQ(sampleRandom(0, 0, 1, 0), 5757736.0f / 16777216.0f);      // h = 0x57db2856
+    EXPECT_EQ(sampleRandom(0, 0, 1, 1), 11855066.0f / 16777216.0f);     // h = 0xb4e4da13
     EXPECT_EQ(sampleRandom(7, 12345, 3, 1), 3977206.0f / 16777216.0f);  // h = 0x3caff662
 }
 

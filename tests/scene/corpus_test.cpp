@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "util/error.h"
 #include "scene/scene_geometry.h"
-#include "scene/triangle_mesh.h"
 #include "scene/sdl_reader.h"
+#include "scene/triangle_mesh.h"
 #include "support/corpus.h"
 #include "support/error_of.h"
 #include "support/scene_checks.h"
+#include "util/error.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -97,8 +97,9 @@ TEST(Corpus, BookSceneRendersEverythingItMakes) {
     VKRAY_NEED_CORPUS();
     // Strict stops at `exponent` (line 6); lenient skips it and builds the
     // teapot (line 27) as vkray's built-in one.
-    EXPECT_NE(errorOf([&] { loadScene(corpus("bookScene.dat"), {}, nullptr); })
-                  .find("bookScene.dat:6:1: error"),
+    EXPECT_NE(errorOf([&] {
+                  loadScene(corpus("bookScene.dat"), {}, nullptr);
+              }).find("bookScene.dat:6:1: error"),
               std::string::npos);
     std::vector<std::string> warnings;
     const Scene scene = loadScene(corpus("bookScene.dat"), {true}, &warnings);
@@ -158,8 +159,9 @@ TEST(Corpus, HillSceneReportsItsMissingMeshesByNameAndPlace) {
     VKRAY_NEED_CORPUS();
     // pawn.3vn, bucky.3vn, diamond.3vn, icosa.3vn and barnsimp.3vn are not
     // in the corpus: strict stops at the first, lenient leaves each out.
-    EXPECT_NE(errorOf([&] { loadScene(corpus("hlScene1.dat"), {}, nullptr); })
-                  .find("hlScene1.dat:44:64: error: cannot load mesh 'pawn.3vn'"),
+    EXPECT_NE(errorOf([&] {
+                  loadScene(corpus("hlScene1.dat"), {}, nullptr);
+              }).find("hlScene1.dat:44:64: error: cannot load mesh 'pawn.3vn'"),
               std::string::npos);
     std::vector<std::string> warnings;
     const Scene scene = loadScene(corpus("hlScene1.dat"), {true}, &warnings);

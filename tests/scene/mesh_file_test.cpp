@@ -15,10 +15,10 @@
 #include <functional>
 #include <string>
 
-#include "util/error.h"
 #include "support/corpus.h"
 #include "support/error_of.h"
 #include "support/scene_checks.h"
+#include "util/error.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."

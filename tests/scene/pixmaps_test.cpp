@@ -12,10 +12,10 @@
 #include <string>
 
 #include "image/image_io.h"
-#include "util/error.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 #include "support/error_of.h"
+#include "util/error.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -63,9 +63,8 @@ TEST(Pixmaps, TheTestImageDecodesToTheKnownTexels) {
 
 TEST(Pixmaps, AMissingFileFailsAtTheMakePixmapWord) {
     const std::string message = errorOf([] { load("sphere\n  makePixmap 0 data/none.png"); });
-    EXPECT_TRUE(startsWith(message, kSceneFile +
-                                        ":2:3: error: cannot load pixmap 'data/none.png' "
-                                        "(makePixmap 0)\n"))
+    EXPECT_TRUE(startsWith(message, kSceneFile + ":2:3: error: cannot load pixmap 'data/none.png' "
+                                                 "(makePixmap 0)\n"))
         << message;
     EXPECT_NE(message.find("none.png: No such file or directory"), std::string::npos) << message;
 }
@@ -96,15 +95,16 @@ TEST(Pixmaps, AnUndecodableImageFailsAtTheMakePixmapWord) {
 }
 
 TEST(Pixmaps, ADuplicateIndexFailsAtTheSecondMakePixmap) {
-    EXPECT_EQ(errorOf([] { load("makePixmap 0 data/texels.png\nmakePixmap 0 data/texels.png"); }),
-              kSceneFile + ":2:1: error: makePixmap 0 is already defined at " + kSceneFile +
-                  ":1:1");
+    EXPECT_EQ(
+        errorOf([] { load("makePixmap 0 data/texels.png\nmakePixmap 0 data/texels.png"); }),
+        kSceneFile + ":2:1: error: makePixmap 0 is already defined at " + kSceneFile + ":1:1");
 }
 
 TEST(Pixmaps, TextureThreeNeedsAnExistingPixmapIndex) {
-    EXPECT_EQ(errorOf([] { load("makePixmap 0 data/texels.png\n  texture 3 parameters 1 2 cube"); }),
-              kSceneFile +
-                  ":2:3: error: texture 3 uses pixmap 2, but the scene has no 'makePixmap 2 FILE'");
+    EXPECT_EQ(
+        errorOf([] { load("makePixmap 0 data/texels.png\n  texture 3 parameters 1 2 cube"); }),
+        kSceneFile +
+            ":2:3: error: texture 3 uses pixmap 2, but the scene has no 'makePixmap 2 FILE'");
     EXPECT_EQ(errorOf([] { load("texture 3 sphere"); }),
               kSceneFile +
                   ":1:1: error: texture 3 needs 'parameters 1 i' naming a 'makePixmap i FILE'; "
@@ -112,18 +112,18 @@ TEST(Pixmaps, TextureThreeNeedsAnExistingPixmapIndex) {
     EXPECT_TRUE(startsWith(errorOf([] { load("texture 3 parameters 1 0.5 sphere"); }),
                            kSceneFile + ":1:1: error: texture 3 needs a pixmap index"));
     // Operands of booleans are shapes too.
-    EXPECT_TRUE(startsWith(
-        errorOf([] { load("union sphere\ntexture 3 parameters 1 4 cube"); }),
-        kSceneFile + ":2:1: error: texture 3 uses pixmap 4"));
+    EXPECT_TRUE(startsWith(errorOf([] { load("union sphere\ntexture 3 parameters 1 4 cube"); }),
+                           kSceneFile + ":2:1: error: texture 3 uses pixmap 4"));
     // A texture no shape is made with is never looked at.
     EXPECT_NO_THROW(load("sphere texture 3 parameters 1 9"));
 }
 
 TEST(Pixmaps, LenientDropsABadPixmapAndDrawsItsShapesUntextured) {
     std::vector<std::string> warnings;
-    const Scene scene = load("makePixmap 0 data/none.png\ntexture 3 parameters 1 0 sphere\n"
-                             "texture 1 parameters 0 cube",
-                             true, &warnings);
+    const Scene scene = load(
+        "makePixmap 0 data/none.png\ntexture 3 parameters 1 0 sphere\n"
+        "texture 1 parameters 0 cube",
+        true, &warnings);
     ASSERT_EQ(warnings.size(), 2u);
     EXPECT_TRUE(startsWith(warnings[0], kSceneFile +
                                             ":1:1: warning: cannot load pixmap 'data/none.png' "
@@ -152,12 +152,12 @@ TEST(TextureWord, OnlyCodesZeroToThreeAreKnown) {
 }
 
 TEST(TextureWord, CellSizeAndRingWidthMustBePositive) {
-    EXPECT_EQ(errorOf([] { load("sphere\ntexture 1 parameters 1 0 cube"); }),
-              kSceneFile +
-                  ":2:1: error: texture 1 needs a checkerboard size > 0 as its first parameter");
-    EXPECT_EQ(errorOf([] { load("texture 2 parameters 4 -1 1 0 0 cube"); }),
-              kSceneFile +
-                  ":1:1: error: texture 2 needs a wood ring width > 0 as its first parameter");
+    EXPECT_EQ(
+        errorOf([] { load("sphere\ntexture 1 parameters 1 0 cube"); }),
+        kSceneFile + ":2:1: error: texture 1 needs a checkerboard size > 0 as its first parameter");
+    EXPECT_EQ(
+        errorOf([] { load("texture 2 parameters 4 -1 1 0 0 cube"); }),
+        kSceneFile + ":1:1: error: texture 2 needs a wood ring width > 0 as its first parameter");
     EXPECT_NO_THROW(load("texture 1 parameters 1 0.25 cube texture 2 sphere"));
 }
 

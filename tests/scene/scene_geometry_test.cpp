@@ -12,11 +12,11 @@
 #include <numbers>
 #include <string>
 
-#include "util/error.h"
 #include "scene/triangle_mesh.h"
 #include "support/corpus.h"
 #include "support/error_of.h"
 #include "support/scene_checks.h"
+#include "util/error.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -98,8 +98,7 @@ TEST(SceneGeometry, CorpusStrictMissingMeshNamesTheMeshWordAndThePath) {
     const std::string firstLine =
         corpus("hlScene1.dat:44:64: error: cannot load mesh 'pawn.3vn'\n");
     EXPECT_EQ(message.substr(0, firstLine.size()), firstLine);
-    EXPECT_TRUE(
-        contains(message, corpus("pawn.3vn: error: cannot read mesh file: No such file")))
+    EXPECT_TRUE(contains(message, corpus("pawn.3vn: error: cannot read mesh file: No such file")))
         << message;
 }
 

@@ -11,10 +11,10 @@
 #include <string>
 
 #include "render/camera.h"
-#include "util/error.h"
 #include "scene/mesh_file.h"
 #include "scene/sdl_reader.h"
 #include "support/error_of.h"
+#include "util/error.h"
 
 namespace vkray {
 namespace {
@@ -69,8 +69,7 @@ TEST(SceneNumbers, LargeButSaneTransformsAreKept) {
 TEST(SceneNumbers, RotationAboutATinyOrHugeAxisIsTheRotationAboutItsDirection) {
     const Scene unit = parseSdl("rotate 30 1 2 0 sphere\n", "n.sdl", {});
     for (const char* axis : {"1e-200 2e-200 0", "1e-320 2e-320 0", "1e17 2e17 0"}) {
-        const Scene scaled =
-            parseSdl(std::string("rotate 30 ") + axis + " sphere\n", "n.sdl", {});
+        const Scene scaled = parseSdl(std::string("rotate 30 ") + axis + " sphere\n", "n.sdl", {});
         for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 4; ++r) {
                 EXPECT_NEAR(scaled.objects[0].worldFromObject[c][r],
@@ -118,8 +117,9 @@ TEST(SceneNumbers, MeshAndOutlineCoordinatesBeyondTheLimitAreRefusedInTheirFile)
     EXPECT_EQ(errorOf([] { parse3vn("1 0 0\n0 2e18 0\n", "m.3vn"); }),
               "m.3vn:2:3: error: the number '2e18' for vertex 0 (y) is beyond vkray's limit of "
               "1e18 (the GPU computes in float)");
-    EXPECT_NE(errorOf([] { parseOutline("3\n0 0\n1 0\n0 -1e30\n", "o.dat"); })
-                  .find("o.dat:4:3: error: the number '-1e30'"),
+    EXPECT_NE(errorOf([] {
+                  parseOutline("3\n0 0\n1 0\n0 -1e30\n", "o.dat");
+              }).find("o.dat:4:3: error: the number '-1e30'"),
               std::string::npos);
 }
 
@@ -137,8 +137,9 @@ TEST(SceneLimits, BooleansNestAtMostTheLimitDeep) {
               "n.sdl:1001:1: error: 'union' nests booleans 1001 deep, beyond vkray's limit of "
               "1000; combine the objects in a balanced tree, or in fewer booleans");
     // Pasted by def/use: the same limit, at the pasted word (and where it was pasted).
-    std::string text = "def u { intersection cube }\ndef v { use u use u use u use u use u "
-                       "use u use u use u use u use u }\n";
+    std::string text =
+        "def u { intersection cube }\ndef v { use u use u use u use u use u "
+        "use u use u use u use u use u }\n";
     for (int i = 0; i < 101; ++i) text += "use v ";  // 1010 open intersections
     const std::string message = sceneError(text + "\ncube\n");
     EXPECT_NE(message.find("n.sdl:1:9: error: 'intersection' nests booleans 1001 deep"),

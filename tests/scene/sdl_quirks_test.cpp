@@ -27,7 +27,6 @@
 #include <string>
 #include <vector>
 
-#include "util/error.h"
 #include "scene/mesh_file.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_lexer.h"
@@ -35,6 +34,7 @@
 #include "scene/triangle_mesh.h"
 #include "support/error_of.h"
 #include "support/scene_checks.h"
+#include "util/error.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."

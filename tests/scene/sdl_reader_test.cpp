@@ -441,18 +441,22 @@ TEST(SdlReader, LenientModeStillRefusesStrayBracesAndBadArguments) {
 // none, with a warning at the word; strict refuses it there, naming the codes.
 TEST(SdlReader, LenientModeReadsAnUnknownTextureCodeAsNone) {
     std::vector<std::string> warnings;
-    const Scene scene = parse("texture 1 sphere\n  texture -1 cube\ntexture 2 square\n", true, &warnings);
+    const Scene scene =
+        parse("texture 1 sphere\n  texture -1 cube\ntexture 2 square\n", true, &warnings);
     ASSERT_EQ(scene.objects.size(), 3u);
     EXPECT_EQ(scene.objects[0].material.texture, 1);
     EXPECT_EQ(scene.objects[1].material.texture, 0);
     EXPECT_EQ(scene.objects[2].material.texture, 2);
     ASSERT_EQ(warnings.size(), 1u);
-    EXPECT_EQ(warnings[0],
-              "t.sdl:2:3: warning: texture -1 is not one of 0 none, 1 checkerboard, 2 wood, 3 image; "
-              "drawn without a texture (as texture 0)");
-    EXPECT_EQ(parse("texture 7.5 sphere", true).objects.at(0).material.texture, 0);  // warnings dropped
-    EXPECT_ERROR("sphere\n  texture -1 cube",
-                 "t.sdl:2:3: error: texture -1 is not one of 0 none, 1 checkerboard, 2 wood, 3 image");
+    EXPECT_EQ(
+        warnings[0],
+        "t.sdl:2:3: warning: texture -1 is not one of 0 none, 1 checkerboard, 2 wood, 3 image; "
+        "drawn without a texture (as texture 0)");
+    EXPECT_EQ(parse("texture 7.5 sphere", true).objects.at(0).material.texture,
+              0);  // warnings dropped
+    EXPECT_ERROR(
+        "sphere\n  texture -1 cube",
+        "t.sdl:2:3: error: texture -1 is not one of 0 none, 1 checkerboard, 2 wood, 3 image");
 }
 
 // ---- camera extension ---------------------------------------------------------------

@@ -14,9 +14,9 @@
 #include <set>
 #include <string>
 
-#include "util/error.h"
 #include "support/corpus.h"
 #include "support/error_of.h"
+#include "util/error.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."

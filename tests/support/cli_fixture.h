@@ -4,19 +4,19 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <array>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 #include <thread>
-#include <unistd.h>
 #include <vector>
 
 #ifndef VKRAY_BINARY
@@ -43,7 +43,8 @@ inline RunResult runShell(const std::string& commandLine) {
     if (!pipe) return run;
     std::array<char, 4096> buffer;
     size_t n;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.output.append(buffer.data(), n);
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+        run.output.append(buffer.data(), n);
     const int status = ::pclose(pipe);
     run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return run;
@@ -134,7 +135,8 @@ class CliTest : public ::testing::Test {
 protected:
     void SetUp() override {
         dir = fs::path(::testing::TempDir()) /
-              ("vkray-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+              ("vkray-cli-" +
+               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
         fs::remove_all(dir);
         fs::create_directories(dir);
     }
@@ -153,8 +155,8 @@ protected:
     void expectRenderError(const std::string& sceneText, const std::string& expected,
                            const std::string& extra = "") {
         const std::string file = scene("bad.sdl", sceneText);
-        RunResult run = vkray("render " + file + " -o " + path("out.png") + " --aov " + path("aov") +
-                        " --size 32x24 " + extra);
+        RunResult run = vkray("render " + file + " -o " + path("out.png") + " --aov " +
+                              path("aov") + " --size 32x24 " + extra);
         EXPECT_EQ(run.status, 1) << run.output;
         EXPECT_NE(run.output.find(expected), std::string::npos) << run.output;
         expectNoOutputs();

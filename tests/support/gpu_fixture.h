@@ -34,7 +34,8 @@ inline gpu::Context& gpuContext() {
 inline Frame renderOnGpu(const Scene& scene, const CameraBasis& camera,
                          const RenderSettings& settings, gpu::GpuRenderStats* stats = nullptr,
                          bool allFeatures = false) {
-    gpu::GpuTracer tracer(gpuContext(), {.shaderDirectory = kShaderDir, .allFeatures = allFeatures});
+    gpu::GpuTracer tracer(gpuContext(),
+                          {.shaderDirectory = kShaderDir, .allFeatures = allFeatures});
     return tracer.render(scene, camera, settings, stats);
 }
 

@@ -4,11 +4,11 @@
 // the tests skip with that message.
 #pragma once
 
-#include <csignal>
-#include <string>
 #include <poll.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <csignal>
+#include <string>
 
 namespace vkray::test {
 
