@@ -24,7 +24,6 @@
 #include "util/error.h"
 #include "util/stopwatch.h"
 
-#include <time.h>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -159,12 +158,6 @@ struct Timing {
         cpu = std::min(cpu, t.cpu);
     }
 };
-
-double processCpuSeconds() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
 
 template <typename F>
 Timing timed(F&& work) {

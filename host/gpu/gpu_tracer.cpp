@@ -1,14 +1,12 @@
 #include "gpu/gpu_tracer.h"
 
-#include "gpu/context_impl.h"
 #include "gpu/device_limits.h"
 #include "gpu/gpu_scene.h"
-#include "gpu/shader_variant.h"
+#include "gpu/trace_pass.h"
 #include "shaders/layout.h"
 #include "util/error.h"
 #include "util/stopwatch.h"
 
-#include <time.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -18,337 +16,7 @@
 
 namespace vkray::gpu {
 
-// The compute pipeline of one shader variant, kept while the variant stays
-// the same (lavapipe compiles SPIR-V to machine code at pipeline creation).
-struct Pipeline {
-    std::string key;
-    uint workgroupX = WORKGROUP_X, workgroupY = WORKGROUP_Y;  // trace.comp's local size
-    vk::raii::DescriptorSetLayout setLayout = nullptr;
-    vk::raii::PipelineLayout layout = nullptr;
-    vk::raii::ShaderModule module = nullptr;
-    vk::raii::Pipeline pipeline = nullptr;
-};
-
 namespace {
-
-// CPU time of the whole process, lavapipe's worker threads included: on a
-// machine shared with other work it stays about the work done.
-double processCpuSeconds() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-// How a binding of each kind is made: its descriptor, its buffer's usage
-// and, for a texel buffer, the view's format and the bytes of one texel.
-struct BindingUse {
-    vk::DescriptorType descriptor;
-    vk::BufferUsageFlags usage;
-    vk::Format format = vk::Format::eUndefined;
-    std::size_t texelBytes = 0;  // 0: not a texel buffer
-};
-
-BindingUse useOf(BindingKind kind) {
-    using Usage = vk::BufferUsageFlagBits;
-    switch (kind) {
-    case BindingKind::Uniform: return {vk::DescriptorType::eUniformBuffer, Usage::eUniformBuffer};
-    case BindingKind::Storage: return {vk::DescriptorType::eStorageBuffer, Usage::eStorageBuffer};
-    case BindingKind::Texels:
-        return {vk::DescriptorType::eStorageTexelBuffer, Usage::eStorageTexelBuffer,
-                vk::Format::eR32G32B32A32Uint, 16};
-    case BindingKind::UintTexels:
-        return {vk::DescriptorType::eStorageTexelBuffer, Usage::eStorageTexelBuffer,
-                vk::Format::eR32Uint, 4};
-    }
-    throw Error("internal: a binding of no known kind");
-}
-
-template <typename T>
-std::unique_ptr<HostBuffer> makeBuffer(Context::Impl& c, const std::vector<T>& items,
-                                       vk::BufferUsageFlags usage) {
-    // Vulkan forbids empty buffers: an empty array still gets one element.
-    // (Sizes were checked against the device's limits by checkBufferNeeds.)
-    const vk::DeviceSize bytes = sizeof(T) * std::max<size_t>(items.size(), 1);
-    auto buffer = std::make_unique<HostBuffer>(c, bytes, usage);
-    if (!items.empty()) buffer->upload(items.data(), sizeof(T) * items.size());
-    return buffer;
-}
-
-// Every buffer TracePass allocates for this variant, before it allocates any.
-std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures& features,
-                                    bool doubles, size_t tilePixels, size_t tileRays,
-                                    size_t pendingRays, size_t debugEntries) {
-    std::map<uint, BindingKind> kinds;
-    for (const ShaderBinding& b : bindingsFor(features)) kinds[b.binding] = b.kind;
-    // A scene array: a texel buffer, its texels those of its binding's kind.
-    const auto need = [&](uint binding, const char* what, const auto& items, const char* advice) {
-        return BufferNeed{what,  items.size(), sizeof(items[0]),
-                          false, advice,       useOf(kinds.at(binding)).texelBytes};
-    };
-    const char* fewerObjects = "Use fewer objects";
-    const char* smallerMeshes = "Use fewer or smaller meshes";
-    std::vector<BufferNeed> needs{
-        {"frame parameters", 1, sizeof(FrameParams), true, "Use another --device"},
-        need(BINDING_OBJECTS, "objects", packed.objects, fewerObjects),
-        need(BINDING_MATERIALS, "materials", packed.materials, fewerObjects),
-        {"tile pixels", tilePixels, sizeof(GpuPixel), false, "Use a smaller --block"},
-        {"ray progress", tileRays, sizeof(GpuRayProgress), false, "Use a smaller --block"},
-    };
-    if (kinds.count(BINDING_LIGHTS))
-        needs.push_back(need(BINDING_LIGHTS, "lights", packed.lights, "Use fewer lights"));
-    if (pendingRays > 0)
-        needs.push_back({"pending rays", pendingRays,
-                         doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask), false,
-                         "Use a smaller maxRecursionDepth"});
-    if (features.debugPixel)
-        needs.push_back(
-            {"debug entries", debugEntries, sizeof(GpuDebugEntry), false, fewerObjects});
-    if (features.objectBvh) {
-        needs.push_back(
-            need(BINDING_OBJECT_NODES, "object BVH nodes", packed.objectNodes, fewerObjects));
-        needs.push_back(
-            need(BINDING_OBJECT_INDEX, "object BVH entries", packed.objectIndex, fewerObjects));
-    }
-    if (features.kinds[KIND_MESH]) {
-        needs.push_back(need(BINDING_MESHES, "meshes", packed.meshes, smallerMeshes));
-        needs.push_back(
-            need(BINDING_MESH_NODES, "mesh BVH nodes", packed.meshNodes, smallerMeshes));
-        needs.push_back(need(BINDING_TRIANGLES, "triangles", packed.triangles, smallerMeshes));
-    }
-    if (features.kinds[KIND_BOOLEAN])
-        needs.push_back(
-            need(BINDING_CSG_NODES, "CSG nodes", packed.csgNodes, "Use fewer or simpler booleans"));
-    if (doubles)
-        needs.push_back(
-            need(BINDING_DOUBLE_OBJECTS, "double transforms", packed.doubleObjects, fewerObjects));
-    if (features.stressOutput)
-        needs.push_back(
-            {"stress output", tilePixels, sizeof(GpuStressSample), false, "Use a smaller image"});
-    return needs;
-}
-
-// Loop turns one ray may run in one dispatch (counted in trace.comp as
-// loopTurns). llvmpipe ends every loop of an invocation once 65 535 turns
-// have run in it, silently; 8 lanes share that count, and some loops are not
-// counted, hence the margin. The canary catches what the margin misses.
-constexpr uint kTurnBudget = 4096;
-constexpr uint kCanaryTurns = 4;
-
-// Everything one render needs on the device: the scene's buffers, the
-// descriptor set and a command buffer; traceTile() traces one tile and
-// waits for it.
-class TracePass {
-public:
-    // doubles: the fp64 variant, which also reads the camera and M^-1 in double.
-    TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
-              bool doubles, const Scene& scene, const CameraBasis& camera,
-              const RenderSettings& settings, int tile)
-        : c_(c),
-          pipeline_(pipeline),
-          firstSample_(uint(settings.firstSample)),
-          endSample_(uint(sampleEnd(settings))) {
-        const GpuScene packed = packScene(scene, features);
-        const size_t debugEntries = 4 + scene.objects.size() + scene.lights.size();
-        const size_t raysPerSide = size_t((tile + settings.block - 1) / settings.block);
-        const size_t tileRays = raysPerSide * raysPerSide;
-        const bool rayStack =
-            features.has(Shading::Reflection) || features.has(Shading::Refraction);
-        const size_t pendingRays = rayStack ? tileRays * size_t(pendingRayEntries(scene)) : 0;
-        checkBufferNeeds(bufferNeeds(packed, features, doubles, size_t(tile) * size_t(tile),
-                                     tileRays, pendingRays, debugEntries),
-                         deviceLimits(c.info));
-        const std::vector<FrameParams> frameParams{packFrame(scene, packed, camera, settings)};
-        // Only the buffers this variant reads (the same list as its bindings).
-        const std::vector<ShaderBinding> bindings = bindingsFor(features);
-        for (const ShaderBinding& b : bindings) kinds_[b.binding] = b.kind;
-        add(BINDING_FRAME, frameParams);
-        add(BINDING_OBJECTS, packed.objects);
-        add(BINDING_MATERIALS, packed.materials);
-        if (kinds_.count(BINDING_LIGHTS)) add(BINDING_LIGHTS, packed.lights);
-        add(BINDING_PIXELS, std::vector<GpuPixel>(size_t(tile) * size_t(tile)));
-        allocate(BINDING_PROGRESS, sizeof(GpuRayProgress) * tileRays);
-        add(BINDING_STATUS, std::vector<GpuDispatchStatus>(1));
-        if (rayStack)
-            allocate(BINDING_RAY_STACK,
-                     pendingRays * (doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask)));
-        if (features.debugPixel) {
-            // A header and one entry per object and per light, zeroed.
-            static_assert(sizeof(GpuDebugHeader) == 4 * sizeof(GpuDebugEntry));
-            add(BINDING_DEBUG, std::vector<GpuDebugEntry>(debugEntries));
-        }
-        if (features.objectBvh) {
-            add(BINDING_OBJECT_NODES, packed.objectNodes);
-            add(BINDING_OBJECT_INDEX, packed.objectIndex);
-        }
-        if (features.kinds[KIND_MESH]) {
-            add(BINDING_MESHES, packed.meshes);
-            add(BINDING_MESH_NODES, packed.meshNodes);
-            add(BINDING_TRIANGLES, packed.triangles);
-        }
-        if (features.kinds[KIND_BOOLEAN]) add(BINDING_CSG_NODES, packed.csgNodes);
-        if (features.has(Shading::Pixmaps)) {
-            add(BINDING_PIXMAPS, packed.pixmaps);
-            add(BINDING_TEXELS, packed.texels);
-        }
-        if (doubles) {
-            add(BINDING_DOUBLE_CAMERA, std::vector<GpuDoubleCamera>{packDoubleCamera(camera)});
-            add(BINDING_DOUBLE_OBJECTS, packed.doubleObjects);
-        }
-        if (features.stressOutput)
-            add(BINDING_STRESS_OUTPUT, std::vector<GpuStressSample>(size_t(tile) * size_t(tile)));
-        // Exactly the variant's bindings (bindingsFor): no buffer uploaded for nothing.
-        if (bindings.size() != buffers_.size())
-            throw Error("internal: the buffers uploaded differ from the variant's bindings");
-
-        std::map<vk::DescriptorType, uint> descriptorCounts;
-        for (const ShaderBinding& b : bindings) ++descriptorCounts[useOf(b.kind).descriptor];
-        std::vector<vk::DescriptorPoolSize> poolSizes;
-        for (const auto& [type, count] : descriptorCounts) poolSizes.emplace_back(type, count);
-        pool_ = vk::raii::DescriptorPool(
-            c.device, {vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, poolSizes});
-        set_ = std::move(vk::raii::DescriptorSets(c.device, {*pool_, *pipeline.setLayout}).front());
-        std::vector<vk::DescriptorBufferInfo> infos;
-        infos.reserve(buffers_.size());
-        views_.reserve(buffers_.size());
-        std::vector<vk::WriteDescriptorSet> writes;
-        for (const auto& [binding, buffer] : buffers_) {
-            const BindingUse use = useOf(kindOf(binding));
-            vk::WriteDescriptorSet& write =
-                writes.emplace_back(*set_, binding, 0, 1, use.descriptor);
-            if (use.texelBytes > 0) {
-                views_.emplace_back(
-                    c.device,
-                    vk::BufferViewCreateInfo({}, buffer->buffer(), use.format, 0, VK_WHOLE_SIZE));
-                write.setPTexelBufferView(&*views_.back());  // reserved: the views stay put
-            } else {
-                write.setPBufferInfo(&infos.emplace_back(buffer->buffer(), 0, VK_WHOLE_SIZE));
-            }
-        }
-        c.device.updateDescriptorSets(writes, nullptr);
-
-        commands_ = std::move(vk::raii::CommandBuffers(
-                                  c.device, {*c.commandPool, vk::CommandBufferLevel::ePrimary, 1})
-                                  .front());
-        fence_ = vk::raii::Fence(c.device, vk::FenceCreateInfo{});
-    }
-
-    // Traces the rays of the tile at (tx, ty) of w x h pixels and waits; the
-    // tile's pixels are then in pixels(), row-major with stride w. Each ray
-    // does at most `turnBudget` counted loop turns per dispatch and the tile
-    // is dispatched again until all are done (the image does not depend on
-    // the budget). A dispatch the driver cut short (its canary ran short)
-    // starts the tile over with a quarter of the budget, which later tiles
-    // keep; when a single ray overruns the driver's limit, it is an Error.
-    void traceTile(int tx, int ty, int w, int h, int block, uint& turnBudget,
-                   GpuRenderStats& stats) {
-        for (;;) {
-            GpuDispatchStatus status{};
-            bool first = true;
-            do {
-                status = dispatch(tx, ty, w, h, block, turnBudget, first);
-                ++stats.dispatches;
-                first = false;
-            } while (status.counts.y == 0 && status.counts.x > 0);
-            if (status.counts.y == 0) return;
-            ++stats.tilesRedone;
-            if (turnBudget == 1)
-                throw BeyondTheLoopLimit(
-                    "the GPU cannot trace one ray of the tile at (" + std::to_string(tx) + ", " +
-                    std::to_string(ty) + ") within the driver's loop limit (" + c_.info.name +
-                    " ends every loop of an invocation after a fixed "
-                    "number of turns; llvmpipe's is 65 535), so the result would be "
-                    "wrong. Render with --cpu, or make the scene simpler for one ray "
-                    "(fewer lights, objects or triangles along it)");
-            turnBudget = std::max<uint>(1, turnBudget / 4);
-        }
-    }
-
-    // One dispatch over the tile; `first`: its rays start afresh.
-    GpuDispatchStatus dispatch(int tx, int ty, int w, int h, int block, uint turnBudget,
-                               bool first) {
-        const uint raysX = uint((w + block - 1) / block), raysY = uint((h + block - 1) / block);
-        const TileParams tileParams{{uint(tx), uint(ty), uint(w), uint(h)},
-                                    {turnBudget, first ? 1u : 0u, kCanaryTurns, raysX},
-                                    {firstSample_, endSample_, 0u, 0u}};
-        const GpuDispatchStatus zero{};
-        buffer(BINDING_STATUS).upload(&zero, sizeof zero);
-        commands_.reset();
-        commands_.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-        commands_.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.pipeline);
-        commands_.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.layout, 0, *set_,
-                                     nullptr);
-        commands_.pushConstants<TileParams>(*pipeline_.layout, vk::ShaderStageFlagBits::eCompute, 0,
-                                            tileParams);
-        const uint groupX = pipeline_.workgroupX, groupY = pipeline_.workgroupY;
-        commands_.dispatch((raysX + groupX - 1) / groupX, (raysY + groupY - 1) / groupY, 1);
-        // Shader writes must be visible to the host before the read-back.
-        vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
-        commands_.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
-                                  vk::PipelineStageFlagBits::eHost, {}, toHost, nullptr, nullptr);
-        commands_.end();
-        c_.queue.submit(vk::SubmitInfo({}, {}, *commands_), *fence_);
-        if (c_.device.waitForFences(*fence_, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
-            throw Error("the GPU did not finish a tile");
-        if (injectedFault() == Fault::DeviceLost)  // after the wait: nothing still runs
-            throw vk::DeviceLostError("vkWaitForFences (injected by VKRAY_FAULT)");
-        c_.device.resetFences(*fence_);
-        buffer(BINDING_PIXELS).invalidate();
-        buffer(BINDING_STATUS).invalidate();
-        if (buffers_.count(BINDING_DEBUG)) buffer(BINDING_DEBUG).invalidate();
-        if (buffers_.count(BINDING_STRESS_OUTPUT)) buffer(BINDING_STRESS_OUTPUT).invalidate();
-        return *static_cast<const GpuDispatchStatus*>(buffer(BINDING_STATUS).data());
-    }
-
-    const GpuPixel* pixels() const {
-        return static_cast<const GpuPixel*>(buffer(BINDING_PIXELS).data());
-    }
-    std::uint64_t pixelBuffer() const {
-        const VkBuffer handle = buffer(BINDING_PIXELS).buffer();
-        std::uint64_t bits = 0;
-        static_assert(sizeof bits == sizeof handle);
-        std::memcpy(&bits, &handle, sizeof bits);
-        return bits;
-    }
-    const GpuStressSample* stressSamples() const {
-        return static_cast<const GpuStressSample*>(buffer(BINDING_STRESS_OUTPUT).data());
-    }
-    const GpuDebugHeader& debugHeader() const {
-        return *static_cast<const GpuDebugHeader*>(buffer(BINDING_DEBUG).data());
-    }
-    const GpuDebugEntry* debugEntries() const {
-        return reinterpret_cast<const GpuDebugEntry*>(&debugHeader() + 1);
-    }
-
-private:
-    // The buffer of `binding`, made for the way the variant reads it, holding `items`.
-    template <typename T>
-    void add(uint binding, const std::vector<T>& items) {
-        buffers_.emplace(binding, makeBuffer(c_, items, useOf(kindOf(binding)).usage));
-    }
-    BindingKind kindOf(uint binding) const {
-        const auto found = kinds_.find(binding);
-        if (found == kinds_.end())
-            throw Error("internal: binding " + std::to_string(binding) + " is not the variant's");
-        return found->second;
-    }
-    // The same, `bytes` left as they are: the shader writes before it reads.
-    void allocate(uint binding, size_t bytes) {
-        buffers_.emplace(binding,
-                         std::make_unique<HostBuffer>(c_, bytes, useOf(kindOf(binding)).usage));
-    }
-    HostBuffer& buffer(uint binding) const { return *buffers_.at(binding); }
-
-    Context::Impl& c_;
-    const Pipeline& pipeline_;
-    std::map<uint, BindingKind> kinds_;                    // the variant's bindings
-    uint firstSample_, endSample_;                         // the samples each ray traces
-    std::map<uint, std::unique_ptr<HostBuffer>> buffers_;  // by binding
-    std::vector<vk::raii::BufferView> views_;              // of the texel buffers
-    vk::raii::DescriptorPool pool_ = nullptr;
-    vk::raii::DescriptorSet set_ = nullptr;
-    vk::raii::CommandBuffer commands_ = nullptr;
-    vk::raii::Fence fence_ = nullptr;
-};
 
 glm::dvec3 toDvec3(const vec4& v) {
     return {v.x, v.y, v.z};
@@ -438,26 +106,18 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
         return *pipelines_.back();
     }
 
-    Context::Impl& c = context_.impl();
-    auto p = std::make_unique<Pipeline>();
-    p->key = stats.shader.key;
+    uint workgroupX = WORKGROUP_X, workgroupY = WORKGROUP_Y;
     if (otherWorkgroup) {
-        p->workgroupX = uint(options_.workgroupX);
-        p->workgroupY = uint(options_.workgroupY);
+        workgroupX = uint(options_.workgroupX);
+        workgroupY = uint(options_.workgroupY);
     }
-    std::vector<vk::DescriptorSetLayoutBinding> bindings;
-    const auto bind = [&](uint binding, vk::DescriptorType type) {
-        bindings.emplace_back(binding, type, 1, vk::ShaderStageFlagBits::eCompute);
-    };
-    for (const ShaderBinding& b : bindingsFor(features)) bind(b.binding, useOf(b.kind).descriptor);
-    p->setLayout = vk::raii::DescriptorSetLayout(c.device, {{}, bindings});
-    const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0, sizeof(TileParams));
-    p->layout = vk::raii::PipelineLayout(c.device, {{}, *p->setLayout, pushRange});
-    p->module = vk::raii::ShaderModule(c.device, {{}, stats.shader.spirv});
-    p->pipeline = vk::raii::Pipeline(
-        c.device, nullptr,
-        vk::ComputePipelineCreateInfo(
-            {}, {{}, vk::ShaderStageFlagBits::eCompute, *p->module, "main"}, *p->layout));
+    std::vector<ComputeBinding> bindings;
+    for (const ShaderBinding& b : bindingsFor(features))
+        bindings.push_back({b.binding, descriptorTypeOf(b.kind)});
+    auto p = std::make_unique<Pipeline>(
+        Pipeline{stats.shader.key, workgroupX, workgroupY,
+                 ComputePipeline(context_.impl(), stats.shader.spirv, std::move(bindings),
+                                 sizeof(TileParams))});
     if (pipelines_.size() == kPipelinesKept) pipelines_.erase(pipelines_.begin());
     pipelines_.push_back(std::move(p));
     return *pipelines_.back();

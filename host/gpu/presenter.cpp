@@ -1,6 +1,6 @@
 #include "gpu/presenter.h"
 
-#include "gpu/context_impl.h"
+#include "gpu/compute_pipeline.h"
 #include "gpu/spirv_cache.h"
 #include "image/stb_codecs.h"
 #include "shaders/layout.h"
@@ -77,12 +77,8 @@ struct Presenter::Impl {
     bool recreate = false;
 
     HostBuffer sums, aovs, cpu, view, bytes, range;
-    vk::raii::DescriptorSetLayout setLayout = nullptr;
-    vk::raii::PipelineLayout layout = nullptr;
-    vk::raii::ShaderModule module = nullptr;
-    vk::raii::Pipeline pipeline = nullptr;
-    vk::raii::DescriptorPool pool = nullptr;
-    vk::raii::DescriptorSet set = nullptr;
+    std::optional<ComputePipeline> compose;
+    std::optional<DescriptorSet> descriptors;
     vk::raii::CommandBuffer commands = nullptr;
     vk::raii::Fence fence = nullptr;
     vk::raii::Semaphore acquired = nullptr;
@@ -106,17 +102,18 @@ struct Presenter::Impl {
     void bindTile(vk::Buffer tile) {
         const vk::DescriptorBufferInfo info(tile, 0, VK_WHOLE_SIZE);
         c.device.updateDescriptorSets(
-            vk::WriteDescriptorSet(*set, PRESENT_BINDING_TILE, 0, 1,
+            vk::WriteDescriptorSet(*descriptors->set, PRESENT_BINDING_TILE, 0, 1,
                                    vk::DescriptorType::eStorageBuffer, nullptr, &info),
             nullptr);
     }
 
     // Records the dispatch of present.comp over rect (with its push constants).
     void recordDispatch(const PresentParams& params) {
-        commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline);
-        commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout, 0, *set, nullptr);
-        commands.pushConstants<PresentParams>(*layout, vk::ShaderStageFlagBits::eCompute, 0,
-                                              params);
+        commands.bindPipeline(vk::PipelineBindPoint::eCompute, *compose->pipeline);
+        commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *compose->layout, 0,
+                                    *descriptors->set, nullptr);
+        commands.pushConstants<PresentParams>(*compose->layout, vk::ShaderStageFlagBits::eCompute,
+                                              0, params);
         commands.dispatch((params.rect.z + PRESENT_WORKGROUP - 1) / PRESENT_WORKGROUP,
                           (params.rect.w + PRESENT_WORKGROUP - 1) / PRESENT_WORKGROUP, 1);
     }
@@ -140,10 +137,7 @@ struct Presenter::Impl {
             submit.setWaitSemaphoreCount(1).setPWaitSemaphores(&wait).setPWaitDstStageMask(&stage);
         }
         if (signal) submit.setSignalSemaphoreCount(1).setPSignalSemaphores(&signal);
-        c.queue.submit(submit, *fence);
-        if (c.device.waitForFences(*fence, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
-            throw Error("the GPU did not finish presenting the view");
-        c.device.resetFences(*fence);
+        gpu::submitAndWait(c, submit, fence, "presenting the view");
     }
 
     void makeSwapchain() {
@@ -241,37 +235,22 @@ Presenter::Presenter(Context& context, const std::string& shaderDirectory,
     const uvec4 noRange{0x7f800000u, 0, 0, 0};
     s.range.upload(&noRange, sizeof noRange);
 
-    std::vector<vk::DescriptorSetLayoutBinding> bindings;
+    std::vector<ComputeBinding> bindings;
     for (uint b = PRESENT_BINDING_TILE; b <= PRESENT_BINDING_RANGE; ++b)
-        bindings.emplace_back(b, vk::DescriptorType::eStorageBuffer, 1,
-                              vk::ShaderStageFlagBits::eCompute);
-    s.setLayout = vk::raii::DescriptorSetLayout(c.device, {{}, bindings});
-    const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0,
-                                          sizeof(PresentParams));
-    s.layout = vk::raii::PipelineLayout(c.device, {{}, *s.setLayout, pushRange});
+        bindings.push_back({b, vk::DescriptorType::eStorageBuffer});
     const CompiledShader shader = loadOrCompile({shaderDirectory, "present.comp", {}});
-    s.module = vk::raii::ShaderModule(c.device, {{}, shader.spirv});
-    s.pipeline = vk::raii::Pipeline(
-        c.device, nullptr,
-        vk::ComputePipelineCreateInfo(
-            {}, {{}, vk::ShaderStageFlagBits::eCompute, *s.module, "main"}, *s.layout));
-    const vk::DescriptorPoolSize poolSize(vk::DescriptorType::eStorageBuffer,
-                                          uint(bindings.size()));
-    s.pool = vk::raii::DescriptorPool(
-        c.device, {vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, poolSize});
-    s.set = std::move(vk::raii::DescriptorSets(c.device, {*s.pool, *s.setLayout}).front());
+    s.compose.emplace(c, shader.spirv, std::move(bindings), uint(sizeof(PresentParams)));
+    s.descriptors.emplace(c, *s.compose);
     const std::array<const HostBuffer*, 7> buffers{&s.aovs, &s.sums,  &s.aovs, &s.cpu,
                                                    &s.view, &s.bytes, &s.range};
     std::vector<vk::DescriptorBufferInfo> infos;
     for (const HostBuffer* buffer : buffers) infos.emplace_back(buffer->buffer(), 0, VK_WHOLE_SIZE);
     std::vector<vk::WriteDescriptorSet> writes;
     for (uint b = 0; b < infos.size(); ++b)
-        writes.emplace_back(*s.set, b, 0, 1, vk::DescriptorType::eStorageBuffer, nullptr,
-                            &infos[b]);
+        writes.emplace_back(*s.descriptors->set, b, 0, 1, vk::DescriptorType::eStorageBuffer,
+                            nullptr, &infos[b]);
     c.device.updateDescriptorSets(writes, nullptr);
-    s.commands = std::move(
-        vk::raii::CommandBuffers(c.device, {*c.commandPool, vk::CommandBufferLevel::ePrimary, 1})
-            .front());
+    s.commands = makeCommandBuffer(c);
     s.fence = vk::raii::Fence(c.device, vk::FenceCreateInfo{});
     s.acquired = vk::raii::Semaphore(c.device, vk::SemaphoreCreateInfo{});
 } catch (const vk::SystemError& failure) {

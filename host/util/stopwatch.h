@@ -1,7 +1,8 @@
 // Wall-clock seconds since a start, on the steady clock (never jumps with the
-// system time).
+// system time), and the process's CPU seconds.
 #pragma once
 
+#include <time.h>
 #include <chrono>
 
 namespace vkray {
@@ -16,5 +17,13 @@ public:
 private:
     std::chrono::steady_clock::time_point start_;
 };
+
+// CPU seconds of the whole process, its worker threads (lavapipe's too)
+// included: on a machine shared with other work it stays about the work done.
+inline double processCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
 
 }  // namespace vkray
