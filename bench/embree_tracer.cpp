@@ -4,14 +4,13 @@
 #include "scene/scene_geometry.h"
 #include "scene/triangle_mesh.h"
 #include "util/error.h"
+#include "util/parallel_for.h"
+#include "util/stopwatch.h"
 
 #include <embree3/rtcore.h>
 
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 namespace vkray::bench {
 
@@ -106,13 +105,11 @@ void userIntersect(const RTCIntersectFunctionNArguments* args) {
     }
 }
 
-using Clock = std::chrono::steady_clock;
-
 }  // namespace
 
 EmbreeTracer::EmbreeTracer(const Scene& scene, int threads) : impl_(std::make_unique<Impl>(scene)) {
     Impl& m = *impl_;
-    const auto start = Clock::now();
+    const Stopwatch build;
     const std::string config = "threads=" + std::to_string(threads);
     m.device = rtcNewDevice(config.c_str());
     if (!m.device) throw Error("Embree: rtcNewDevice(\"" + config + "\") failed");
@@ -201,7 +198,7 @@ EmbreeTracer::EmbreeTracer(const Scene& scene, int threads) : impl_(std::make_un
     m.check("building the geometry");
     rtcCommitScene(m.rtcScene);
     m.check("rtcCommitScene");
-    m.buildSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+    m.buildSeconds = build.seconds();
 }
 
 EmbreeTracer::~EmbreeTracer() = default;
@@ -262,74 +259,71 @@ std::vector<int> EmbreeTracer::trace(const CameraBasis& camera, int width, int h
     const auto objectOf = [&](unsigned geomID, unsigned primID) {
         return geomID == RTC_INVALID_GEOMETRY_ID ? -1 : m.objectOfPrimitive[geomID][primID];
     };
-    std::atomic<int> nextRows{0};
-    const auto work = [&] {
+    // Two rows at a time: the height of an 8-ray packet of 4x2 rays.
+    const auto rowPair = [&](std::size_t pair) {
+        const int y0 = 2 * int(pair);
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         if (packets) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        for (int y0; (y0 = nextRows.fetch_add(2)) < height;) {
-            if (!packets) {
-                for (int y = y0; y < std::min(y0 + 2, height); ++y)
-                    for (int x = 0; x < width; ++x) {
-                        const glm::dvec3 d = direction(x, y);
-                        RTCRayHit rh{};
-                        rh.ray = {float(camera.eye.x),
-                                  float(camera.eye.y),
-                                  float(camera.eye.z),
-                                  0.f,
-                                  float(d.x),
-                                  float(d.y),
-                                  float(d.z),
-                                  0.f,
-                                  std::numeric_limits<float>::infinity(),
-                                  ~0u,
-                                  0,
-                                  0};
-                        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                        rtcIntersect1(m.rtcScene, &context, &rh);
-                        int id = objectOf(rh.hit.geomID, rh.hit.primID);
-                        if (!m.unbounded.empty()) id = unboundedHit(d, rh.ray.tfar, id);
-                        ids[size_t(y) * size_t(width) + size_t(x)] = id;
-                    }
-                continue;
+        if (!packets) {
+            for (int y = y0; y < std::min(y0 + 2, height); ++y)
+                for (int x = 0; x < width; ++x) {
+                    const glm::dvec3 d = direction(x, y);
+                    RTCRayHit rh{};
+                    rh.ray = {float(camera.eye.x),
+                              float(camera.eye.y),
+                              float(camera.eye.z),
+                              0.f,
+                              float(d.x),
+                              float(d.y),
+                              float(d.z),
+                              0.f,
+                              std::numeric_limits<float>::infinity(),
+                              ~0u,
+                              0,
+                              0};
+                    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                    rtcIntersect1(m.rtcScene, &context, &rh);
+                    int id = objectOf(rh.hit.geomID, rh.hit.primID);
+                    if (!m.unbounded.empty()) id = unboundedHit(d, rh.ray.tfar, id);
+                    ids[size_t(y) * size_t(width) + size_t(x)] = id;
+                }
+            return;
+        }
+        for (int x0 = 0; x0 < width; x0 += 4) {
+            alignas(32) RTCRayHit8 rh;
+            alignas(32) int valid[8];
+            glm::dvec3 dirs[8];
+            for (int k = 0; k < 8; ++k) {
+                const int x = x0 + k % 4, y = y0 + k / 4;
+                valid[k] = x < width && y < height ? -1 : 0;
+                const glm::dvec3 d = valid[k] ? direction(x, y) : glm::dvec3(0, 0, -1);
+                dirs[k] = d;
+                rh.ray.org_x[k] = float(camera.eye.x);
+                rh.ray.org_y[k] = float(camera.eye.y);
+                rh.ray.org_z[k] = float(camera.eye.z);
+                rh.ray.tnear[k] = 0;
+                rh.ray.dir_x[k] = float(d.x);
+                rh.ray.dir_y[k] = float(d.y);
+                rh.ray.dir_z[k] = float(d.z);
+                rh.ray.time[k] = 0;
+                rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+                rh.ray.mask[k] = ~0u;
+                rh.ray.id[k] = unsigned(k);
+                rh.ray.flags[k] = 0;
+                rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
             }
-            for (int x0 = 0; x0 < width; x0 += 4) {
-                alignas(32) RTCRayHit8 rh;
-                alignas(32) int valid[8];
-                glm::dvec3 dirs[8];
-                for (int k = 0; k < 8; ++k) {
-                    const int x = x0 + k % 4, y = y0 + k / 4;
-                    valid[k] = x < width && y < height ? -1 : 0;
-                    const glm::dvec3 d = valid[k] ? direction(x, y) : glm::dvec3(0, 0, -1);
-                    dirs[k] = d;
-                    rh.ray.org_x[k] = float(camera.eye.x);
-                    rh.ray.org_y[k] = float(camera.eye.y);
-                    rh.ray.org_z[k] = float(camera.eye.z);
-                    rh.ray.tnear[k] = 0;
-                    rh.ray.dir_x[k] = float(d.x);
-                    rh.ray.dir_y[k] = float(d.y);
-                    rh.ray.dir_z[k] = float(d.z);
-                    rh.ray.time[k] = 0;
-                    rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
-                    rh.ray.mask[k] = ~0u;
-                    rh.ray.id[k] = unsigned(k);
-                    rh.ray.flags[k] = 0;
-                    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-                    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-                }
-                rtcIntersect8(valid, m.rtcScene, &context, &rh);
-                for (int k = 0; k < 8; ++k) {
-                    if (!valid[k]) continue;
-                    int id = objectOf(rh.hit.geomID[k], rh.hit.primID[k]);
-                    if (!m.unbounded.empty()) id = unboundedHit(dirs[k], rh.ray.tfar[k], id);
-                    ids[size_t(y0 + k / 4) * size_t(width) + size_t(x0 + k % 4)] = id;
-                }
+            rtcIntersect8(valid, m.rtcScene, &context, &rh);
+            for (int k = 0; k < 8; ++k) {
+                if (!valid[k]) continue;
+                int id = objectOf(rh.hit.geomID[k], rh.hit.primID[k]);
+                if (!m.unbounded.empty()) id = unboundedHit(dirs[k], rh.ray.tfar[k], id);
+                ids[size_t(y0 + k / 4) * size_t(width) + size_t(x0 + k % 4)] = id;
             }
         }
     };
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(work);
-    for (std::thread& t : pool) t.join();
+    parallelFor(std::size_t(height + 1) / 2, rowPair, threads);
     m.check("tracing");
     return ids;
 }
