@@ -150,13 +150,16 @@ struct Placed {
     }
     double perCell(dvec3 eye) const { return stretch() * genericEye(eye) / cell; }
     // A refracting solid's smallest scale (a boolean's second primitive's:
-    // at least 0.4 of its placement's) over its distance from the eye: a
-    // squash by r makes its edges wedges of angle ~r, through whose tips
-    // refracted rays leak where the solid is thinner than their offset.
+    // at least 0.4 of its placement's) over its distance from the eye or from
+    // the world's origin, whichever is larger (the GPU's secondary-ray offset
+    // grows with the first, the CPU reference's with the second): a squash by
+    // r makes its edges wedges of angle ~r, through whose tips refracted rays
+    // leak where the solid is thinner than their offset.
     bool refracts() const { return transparency > 0.5; }  // Hill's minTransparency
     bool thin() const { return refracts() && !plane && body != "square"; }
     double thinPerDistance(dvec3 eye) const {
-        return smallestScale() / stretch() / (glm::length(eye - at) + largestScale());
+        const double distance = std::max(glm::length(eye - at), glm::length(at));
+        return smallestScale() / stretch() / (distance + largestScale());
     }
     double stretch() const { return boolean ? kBooleanChildStretch : 1; }
 
@@ -450,7 +453,10 @@ SceneEnvelope envelopeOf(Precision precision) {
     // between objects start an offset off the surface that grows with the
     // eye's distance). Every scene keeps the eye within 1e6 of the world's
     // origin, where the CPU reference's own hit points still clear its
-    // offset. Naive, the textbook's float, keeps to ordinary views.
+    // offset. Glass is held to 5e3 times the offset its refracted rays start
+    // at: robust's 2^-18 of the distance; fp64's is the CPU reference's 2^-32
+    // (shading.cpp), not the shader's far smaller 2^-47. Naive, the
+    // textbook's float, keeps to ordinary views.
     const EnvelopeLimits naive{400, 400, 400, 1e6, 0.05, 0.05, 0, 0.02};
     switch (precision) {
     case Precision::Naive: return {naive, naive};
@@ -458,7 +464,7 @@ SceneEnvelope envelopeOf(Precision precision) {
         return {{2e3, 2e3, 2e3, 1e6, 2e-3, 2e-3, 1e5, 0.02},
                 {1.6e4, 7 / 1e-8, 5e3, 1e6, 1e-4, 1e-8, 1e7, 0}};
     case Precision::Fp64:
-        return {{1e6, 4.3e10, 2e7, 1e6, 1e-10, 1e-8, 2e7, 0.02 * 0x1p-29},
+        return {{1e6, 4.3e10, 2e7, 1e6, 1e-10, 1e-8, 2e7, 0.02 * 0x1p-14},
                 {1e6, 7 / 1e-10, 2e7, 1e6, 1e-10, 1e-8, 2e7, 0}};
     }
     return {naive, naive};

@@ -28,10 +28,9 @@ Medium Medium::left() const {
 }
 
 glm::dvec3 offsetRayOrigin(const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& direction) {
-    constexpr double kRelativeOffset = 0x1p-32;
     const double scale = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), 1.0});
     const glm::dvec3 side = glm::dot(n, direction) < 0 ? -n : n;
-    return p + side * (scale * kRelativeOffset);
+    return p + side * (scale * kSecondaryRayOffset);
 }
 
 glm::dvec3 reflectDirection(const glm::dvec3& d, const glm::dvec3& m) {

@@ -37,6 +37,7 @@ struct Medium {
 // the coordinates, as their rounding error does) with double's ulps: about
 // 2^20 ulps of |p|, far above the intersectors' error and far below any
 // feature of a scene.
+inline constexpr double kSecondaryRayOffset = 0x1p-32;
 glm::dvec3 offsetRayOrigin(const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& direction);
 
 // Mirror direction of unit d about the unit normal m.

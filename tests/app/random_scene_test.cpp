@@ -3,6 +3,7 @@
 // language and every render setting.
 #include "app/random_scene.h"
 
+#include "reference/shading.h"
 #include "scene/scene_geometry.h"
 
 #include <glm/geometric.hpp>
@@ -159,6 +160,22 @@ TEST(RandomScene, EachModesScenesCoverTheirWholeEnvelopeAndStayInside) {
                 EXPECT_GE(m.generic, env.farthestGeneric / 8) << name;
                 EXPECT_LE(m.thinPerDistance, env.thinnestPerDistance * 2) << name;
             }
+        }
+    }
+}
+
+// Glass among several objects is held to 5e3 times the offset of the
+// refracted rays of both renderers compared: the GPU mode's (robust: 2^-18
+// of the distance) and the CPU reference's. fp64's figure was once set from
+// its shader's 2^-47 alone, and the CPU reference's refracted rays leaked
+// through a tetrahedron squashed to 1.3e-8 (difftest seed 60213, 0.46 % of
+// the pixels).
+TEST(RandomScene, GlassIsThickerThanEitherRenderersOffset) {
+    for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
+        const double glass = envelopeOf(precision).scenes.thinnestPerDistance;
+        EXPECT_GE(glass, 5e3 * reference::kSecondaryRayOffset) << precisionName(precision);
+        if (precision == Precision::Robust) {
+            EXPECT_GE(glass, 5e3 * 0x1p-18);
         }
     }
 }
