@@ -35,6 +35,16 @@ void requireWritableFolder(const std::string& path, const char* what);
 // An Error as vkray prints it: "file:line:col: error: ..." or "vkray: error: ...".
 void printError(const Error& error, std::ostream& err);
 
+// An error every rank of an MPI job reaches alike, before any rank waits on
+// another (the command line; a command or option that does not run across
+// ranks): rank 0 says it and every rank leaves the job with status 1. An
+// abort would do, but mpirun may drop what the ranks wrote just before it.
+class ErrorOnEveryRank : public Error {
+public:
+    using Error::Error;
+    explicit ErrorOnEveryRank(const Error& error) : Error(error) {}
+};
+
 // The GPU side of a command: one Vulkan context and tracer, made on first
 // use and kept (across the re-renders of --watch).
 struct GpuSession {

@@ -47,7 +47,7 @@ int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
                              o.command == Command::Report;
         const bool trivial = o.command == Command::Version || o.command == Command::Help;
         if (!spreads && !trivial)
-            throw Error(
+            throw ErrorOnEveryRank(
                 "only `vkray render`, `vkray stress` and `vkray report` run across MPI "
                 "ranks; run this command without mpirun");
         if (trivial && world.rank() != 0) return 0;  // rank 0 answers
@@ -69,7 +69,13 @@ int main(int argc, char** argv) {
     std::string message;
     try {
         dist::World& world = dist::World::join(argc, argv);
-        const Options options = parseOptions(std::vector<std::string>(argv + 1, argv + argc));
+        const Options options = [&] {
+            try {
+                return parseOptions(std::vector<std::string>(argv + 1, argv + argc));
+            } catch (const Error& e) {
+                throw ErrorOnEveryRank(e);  // every rank reads the same command line
+            }
+        }();
         status = runCommand(options, std::cout, std::cerr);
         world.finish();
         return status;
@@ -82,6 +88,11 @@ int main(int argc, char** argv) {
                       : "vkray: interrupted; nothing was written (existing files are as they "
                         "were)\n";
         status = 130;
+    } catch (const ErrorOnEveryRank& e) {
+        dist::World& world = dist::World::current();
+        if (world.rank() == 0) printError(e, std::cerr);
+        world.finish();
+        return 1;
     } catch (const Error& e) {
         std::ostringstream text;
         printError(e, text);

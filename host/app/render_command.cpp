@@ -201,9 +201,10 @@ int runRender(const Options& o, std::ostream& out, std::ostream& err) {
     const StopOnSignal stopOnSignal;
     GpuSession session;
     if (dist::World::current().distributed()) {
-        if (o.watch) throw Error("--watch does not run across MPI ranks; run it without mpirun");
+        if (o.watch)
+            throw ErrorOnEveryRank("--watch does not run across MPI ranks; run it without mpirun");
         if (o.cpu)
-            throw Error(
+            throw ErrorOnEveryRank(
                 "--cpu renders in one process (its threads share the cores); run it "
                 "without mpirun");
     }
