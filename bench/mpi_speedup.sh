@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Speed-up of `vkray render` across MPI ranks on this machine (issue 10):
+# Speed-up of `vkray render` across MPI ranks on this machine:
 # one process with LP_NUM_THREADS=CORES against mpirun with 1 rank (unbound,
 # all cores) and with 2 ranks (mpirun binds each to a core of its own,
 # LP_NUM_THREADS then follows the binding). Each configuration runs RUNS

@@ -1,4 +1,4 @@
-// Fuzzes the 3VN mesh reader and what issue 4 does with a mesh it read
+// Fuzzes the 3VN mesh reader and what the scene does with a mesh it read
 // (triangle fans, bounds). Any exception other than vkray::Error is a bug.
 #include <cstddef>
 #include <cstdint>

@@ -5,7 +5,7 @@
 // "PATH:line:col: error: ..." at the offending token (or at the end of the
 // file when data is missing).
 //
-// A caller that read the file name from a scene (issue 4) adds its own place
+// A caller that read the file name from a scene adds its own place
 // in front, e.g. formatDiagnostic(meshWord.loc, expansion, "error",
 // "cannot load mesh 'x.3vn'") + "\n" + e.what(), so the user sees both the
 // `mesh` word and the mesh file's own line.

@@ -1,7 +1,6 @@
-// `vkray render`, `vkray stress` and `vkray report` across MPI ranks (issue
-// 10): the image is the one-rank image, bit for bit, the reports hold what
-// one rank's hold (timings aside), and a failing rank ends the run naming
-// itself.
+// `vkray render`, `vkray stress` and `vkray report` across MPI ranks: the
+// image is the one-rank image, bit for bit, the reports hold what one rank's
+// hold (timings aside), and a failing rank ends the run naming itself.
 #include "support/cli_fixture.h"
 
 #include <algorithm>
