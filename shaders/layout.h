@@ -45,7 +45,7 @@ VKRAY_CONST(uint, WORKGROUP_Y, 8u);
 VKRAY_CONST(uint, BINDING_FRAME, 0u);    // uniform FrameParams
 VKRAY_CONST(uint, BINDING_OBJECTS, 1u);  // texels: GpuObjectGeometry[] (what a walk reads)
 VKRAY_CONST(uint, BINDING_LIGHTS, 2u);   // texels: GpuLight[]
-VKRAY_CONST(uint, BINDING_PIXELS, 3u);   // buffer GpuPixel[] (one tile)
+VKRAY_CONST(uint, BINDING_PIXELS, 3u);   // texels: GpuPixel[] (one tile; the presenter reads it as a buffer)
 VKRAY_CONST(uint, BINDING_DEBUG, 4u);    // debug-pixel variant only: buffer GpuDebugHeader + entries
 VKRAY_CONST(uint, BINDING_OBJECT_NODES, 5u);  // object-BVH variant: texels: GpuBvhNode[] over objects
 VKRAY_CONST(uint, BINDING_OBJECT_INDEX, 6u);  // object-BVH variant: r32ui texels: leaf object indices
@@ -57,7 +57,7 @@ VKRAY_CONST(uint, BINDING_PIXMAPS, 11u);      // pixmap variant: texels: GpuPixm
 VKRAY_CONST(uint, BINDING_TEXELS, 12u);       // pixmap variant: r32ui texels: float rgb of all pixmaps
 VKRAY_CONST(uint, BINDING_DOUBLE_CAMERA, 13u);   // fp64 variant: buffer GpuDoubleCamera
 VKRAY_CONST(uint, BINDING_DOUBLE_OBJECTS, 14u);  // fp64 variant: texels: GpuDoubleObject[]
-VKRAY_CONST(uint, BINDING_PROGRESS, 15u);  // buffer GpuRayProgress[]: each ray's state between dispatches
+VKRAY_CONST(uint, BINDING_PROGRESS, 15u);  // texels: GpuRayProgress[]: each ray's state between dispatches
 VKRAY_CONST(uint, BINDING_STATUS, 16u);    // buffer GpuDispatchStatus: what one dispatch left undone
 VKRAY_CONST(uint, BINDING_RAY_STACK, 17u); // reflection/refraction variants: buffer GpuRayTask[] (or double)
 VKRAY_CONST(uint, BINDING_MATERIALS, 18u); // texels: GpuMaterial[] (read once a hit)
@@ -71,6 +71,8 @@ VKRAY_CONST(uint, LIGHT_TEXELS, 2u);
 VKRAY_CONST(uint, BVH_NODE_TEXELS, 2u);
 VKRAY_CONST(uint, TRIANGLE_TEXELS, 6u);
 VKRAY_CONST(uint, DOUBLE_OBJECT_TEXELS, 8u);  // a dvec4 is two texels
+VKRAY_CONST(uint, PIXEL_TEXELS, 2u);          // GpuPixel: color, normal
+VKRAY_CONST(uint, RAY_PROGRESS_TEXELS, 2u);   // GpuRayProgress: sum, color
 
 // Bounds of the shader's fixed-size stacks; the host refuses scenes beyond them.
 VKRAY_CONST(uint, BVH_STACK_SIZE, 48u);  // BVH depth (kMaxBvhDepth on the host)

@@ -58,7 +58,8 @@ void testObject(uint index, rvec3 origin, rvec3 direction, bool feeler, inout Hi
 // ends as the product of the transparencies of the objects met, the walk
 // stopping at 0. This is the shader's only call of testObject: lavapipe
 // inlines every function, so one call site keeps the shapes' code (CSG
-// above all) compiled once.
+// above all) compiled once, or VKRAY_OBJECTS times when the loop is unrolled
+// (closed-form shapes only, shader_variant.cpp).
 void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hit,
                out float through) {
     hit.t = tMax;
@@ -130,6 +131,14 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
         }
         if (leafCount == 0u) break;
     }
+#elif VKRAY_OBJECTS > 0
+    // A few objects, as many as the host counted: a loop of constant trip
+    // count, which lavapipe unrolls, where a loop over a count read at run
+    // time costs several object tests a ray (BENCHMARKS.md). A feeler that
+    // is already stopped (through 0) stays stopped.
+    loopTurns += VKRAY_OBJECTS;
+    for (uint i = 0u; i < VKRAY_OBJECTS; ++i)
+        testObject(i, origin, direction, feeler, hit, through);
 #else
     loopTurns += frame.image.w;
     for (uint i = 0u; i < frame.image.w && through > 0.0; ++i)

@@ -263,7 +263,7 @@ uint nextFacingLight(uint i, GpuMaterial object, Surface s, vec3 v, vec3 k, bool
 // start of an extra one. A dispatch stops only between two rays, when all
 // that is pending is on the stack, so a paused sample goes on as if it had
 // never stopped: the image does not depend on the budget. Sample 0's
-// primary hit gives the AOVs, written to `pixels[firstPixel]`.
+// primary hit gives the AOVs, written to pixel `firstPixel`.
 void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint budget) {
     uint sampleIndex = floatBitsToUint(ray.sum.w);
     uint top = floatBitsToUint(ray.color.w);
@@ -389,9 +389,6 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
             if (loopTurns >= budget) break;
         }
     }
-    if (aovFound) {
-        pixels[firstPixel].color.w = aov.color.w;
-        pixels[firstPixel].normal = aov.normal;
-    }
+    if (aovFound) storePixel(firstPixel, aov);  // its colour is main()'s to write
     ray = GpuRayProgress(vec4(sum, uintBitsToFloat(sampleIndex)), vec4(color, uintBitsToFloat(top)));
 }

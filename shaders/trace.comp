@@ -31,11 +31,15 @@ layout(local_size_x = VKRAY_WORKGROUP_X, local_size_y = VKRAY_WORKGROUP_Y, local
 layout(local_size_x = WORKGROUP_X, local_size_y = WORKGROUP_Y, local_size_z = 1) in;
 #endif
 
-layout(std140, set = 0, binding = BINDING_FRAME) uniform FrameBlock { FrameParams frame; };
-layout(std430, set = 0, binding = BINDING_PIXELS) buffer PixelBlock { GpuPixel pixels[]; };
-layout(std430, set = 0, binding = BINDING_PROGRESS) buffer ProgressBlock { GpuRayProgress progress[]; };
+layout(std140, set = 0, binding = BINDING_FRAME) uniform FrameBlock { FrameParams frameBlock; };
+// The tile's pixels and each ray's progress as texels, GpuPixel and
+// GpuRayProgress bit for bit: on llvmpipe an imageLoad or imageStore is a few
+// vector loads or stores under the lane mask, where a storage-buffer access
+// inside an if or a loop is a scalar loop over the 8 lanes (docs/lavapipe.md).
+layout(set = 0, binding = BINDING_PIXELS, rgba32ui) uniform uimageBuffer pixelTexels;
+layout(set = 0, binding = BINDING_PROGRESS, rgba32ui) uniform uimageBuffer progressTexels;
 layout(std430, set = 0, binding = BINDING_STATUS) buffer StatusBlock { GpuDispatchStatus status; };
-layout(push_constant) uniform TileBlock { TileParams tileParams; };
+layout(push_constant) uniform TileBlock { TileParams tileBlock; };
 #if VKRAY_DEBUG_PIXEL
 layout(std430, set = 0, binding = BINDING_DEBUG) writeonly buffer DebugBlock {
     GpuDebugHeader debugHeader;
@@ -45,9 +49,40 @@ layout(std430, set = 0, binding = BINDING_DEBUG) writeonly buffer DebugBlock {
 #if VKRAY_PRECISION_FP64
 // The camera in double, read instead of its float copy in FrameParams (and
 // every M^-1, scene_data.glsl, instead of GpuObjectGeometry's).
-layout(std430, set = 0, binding = BINDING_DOUBLE_CAMERA) readonly buffer DoubleCameraBlock { GpuDoubleCamera doubleCamera; };
+layout(std430, set = 0, binding = BINDING_DOUBLE_CAMERA) readonly buffer DoubleCameraBlock { GpuDoubleCamera doubleCameraBlock; };
+GpuDoubleCamera doubleCamera;
 #endif
+// Copies of the frame's and the tile's parameters, made at the top of
+// main(): llvmpipe reads a uniform or push constant inside any if or loop as
+// 8 scalar loads a component, and one outside them once (docs/lavapipe.md).
+FrameParams frame;
+TileParams tileParams;
+
 #include "scene_data.glsl"
+
+GpuPixel loadPixel(uint index) {
+    int first = int(index * PIXEL_TEXELS);
+    return GpuPixel(texelAsVec4(imageLoad(pixelTexels, first)),
+                    texelAsVec4(imageLoad(pixelTexels, first + 1)));
+}
+
+void storePixel(uint index, GpuPixel pixel) {
+    int first = int(index * PIXEL_TEXELS);
+    imageStore(pixelTexels, first, floatBitsToUint(pixel.color));
+    imageStore(pixelTexels, first + 1, floatBitsToUint(pixel.normal));
+}
+
+GpuRayProgress loadProgress(uint index) {
+    int first = int(index * RAY_PROGRESS_TEXELS);
+    return GpuRayProgress(texelAsVec4(imageLoad(progressTexels, first)),
+                          texelAsVec4(imageLoad(progressTexels, first + 1)));
+}
+
+void storeProgress(uint index, GpuRayProgress ray) {
+    int first = int(index * RAY_PROGRESS_TEXELS);
+    imageStore(progressTexels, first, floatBitsToUint(ray.sum));
+    imageStore(progressTexels, first + 1, floatBitsToUint(ray.color));
+}
 
 const float INFINITY = 1.0 / 0.0;
 
@@ -256,6 +291,11 @@ void recordDebug(GpuPixel result) {
 #endif
 
 void main() {
+    frame = frameBlock;
+    tileParams = tileBlock;
+#if VKRAY_PRECISION_FP64
+    doubleCamera = doubleCameraBlock;
+#endif
     // This invocation's pixel: one per pixel, or one per block x block pixels.
     uint block = frame.image.z;
     uvec2 rayInTile = gl_GlobalInvocationID.xy;
@@ -294,20 +334,20 @@ void main() {
     if (tileParams.work.y != 0u)  // none of its samples finished, none pending
         ray = GpuRayProgress(vec4(0.0, 0.0, 0.0, uintBitsToFloat(firstSample)), vec4(0.0));
     else
-        ray = progress[rayIndex];
+        ray = loadProgress(rayIndex);
     if (floatBitsToUint(ray.sum.w) < endSample) {
         traceSamples(ray, endSample, firstPixel, tileParams.work.x);
-        progress[rayIndex] = ray;
+        storeProgress(rayIndex, ray);
         if (floatBitsToUint(ray.sum.w) < endSample) {
             atomicAdd(status.counts.x, 1u);
         } else {
-            GpuPixel result = pixels[firstPixel];
+            GpuPixel result = loadPixel(firstPixel);
             result.color.rgb = ray.sum.rgb / float(endSample - firstSample);
             // Fill the block (clipped to the tile).
             uvec2 last = min(first + uvec2(block), tileSize);
             for (uint y = first.y; y < last.y; ++y)
                 for (uint x = first.x; x < last.x; ++x)
-                    pixels[y * tileSize.x + x] = result;
+                    storePixel(y * tileSize.x + x, result);
 #if VKRAY_DEBUG_PIXEL
             recordDebug(result);
 #endif

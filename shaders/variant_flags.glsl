@@ -1,4 +1,5 @@
-// Every variant flag is defined by the host, 0 or 1 (host/gpu/shader_variant.cpp,
+// Every variant flag is defined by the host, 0 or 1, and the count
+// VKRAY_OBJECTS (host/gpu/shader_variant.cpp,
 // variantFlags(): the one list, which a test holds this file to). GLSL reads
 // an undefined name in `#if` as 0 without a word, so a flag the host forgot
 // would leave code out in silence: here it stops the compile instead.
@@ -25,4 +26,7 @@
 #endif
 #if !defined(VKRAY_PRECISION_NAIVE) || !defined(VKRAY_PRECISION_FP64) || !defined(VKRAY_FAULT_NO_OFFSET)
 #error "VKRAY_PRECISION_NAIVE, VKRAY_PRECISION_FP64 or VKRAY_FAULT_NO_OFFSET is not defined: the host defines every variant flag, 0 or 1"
+#endif
+#if !defined(VKRAY_OBJECTS)
+#error "VKRAY_OBJECTS is not defined: the host defines it, the object count of an unrolled walk or 0"
 #endif

@@ -144,7 +144,11 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     else
         out << scene.meshes.size() << " (" << triangles << " triangles)\n";
     out << "object BVH: " << (features.objectBvh ? "yes" : "no") << " (" << bounded
-        << " bounded objects; more than " << gpu::kObjectBvhThreshold << " get one)\n";
+        << " bounded objects; more than " << gpu::kObjectBvhThreshold << " get one)";
+    if (features.unrolledObjects > 0)
+        out << "; each object tested in turn, the loop unrolled over the "
+            << features.unrolledObjects;
+    out << "\n";
     out << "lights: " << scene.lights.size() << "\n";
     std::map<int, int> textures;
     forEachObject(scene.objects, [&](const SceneObject& o) {

@@ -30,6 +30,8 @@ static_assert(sizeof(GpuLight) == LIGHT_TEXELS * kTexel);
 static_assert(sizeof(GpuBvhNode) == BVH_NODE_TEXELS * kTexel);
 static_assert(sizeof(GpuTriangle) == TRIANGLE_TEXELS * kTexel);
 static_assert(sizeof(GpuDoubleObject) == DOUBLE_OBJECT_TEXELS * kTexel);
+static_assert(sizeof(GpuPixel) == PIXEL_TEXELS * kTexel);
+static_assert(sizeof(GpuRayProgress) == RAY_PROGRESS_TEXELS * kTexel);
 static_assert(sizeof(GpuMesh) == kTexel && sizeof(GpuCsgNode) == kTexel &&
               sizeof(GpuPixmap) == kTexel);
 

@@ -74,6 +74,16 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
     for (const SceneObject& object : scene.objects)
         bounded += worldBounds(object, scene).finite() ? 1 : 0;
     features.objectBvh = bounded > kObjectBvhThreshold;
+    // On lavapipe a loop over a count read at run time costs several object
+    // tests on every ray (BENCHMARKS.md); a constant count is unrolled. Each
+    // unrolled test inlines every shape's code, so the shapes with loops of
+    // their own (torus, mesh, CSG) keep the loop: their code is too large to
+    // be compiled eight times.
+    const bool closedForm = !features.kinds[KIND_TORUS] && !features.kinds[KIND_MESH] &&
+                            !features.kinds[KIND_BOOLEAN];
+    if (!allFeatures && !features.objectBvh && closedForm &&
+        scene.objects.size() <= kObjectBvhThreshold)
+        features.unrolledObjects = std::uint32_t(scene.objects.size());
     return features;
 }
 
@@ -91,6 +101,7 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines) {
     defines.emplace_back("VKRAY_OBJECT_BVH", flag(features.objectBvh));
     defines.emplace_back("VKRAY_DEBUG_PIXEL", flag(features.debugPixel));
     defines.emplace_back("VKRAY_STRESS_OUTPUT", flag(features.stressOutput));
+    defines.emplace_back("VKRAY_OBJECTS", std::to_string(features.unrolledObjects));
     // A test hook, never set otherwise (gpu/context.h, VKRAY_FAULT=no-offset).
     defines.emplace_back("VKRAY_FAULT_NO_OFFSET", flag(injectedFault() == Fault::NoOffset));
     defines.insert(defines.end(), userDefines.begin(), userDefines.end());
@@ -103,7 +114,8 @@ std::vector<std::string> variantFlags() {
     for (const GpuShading& shading : kGpuShading) flags.push_back(shading.define);
     for (const char* other :
          {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_DEBUG_PIXEL", "VKRAY_STRESS_OUTPUT",
-          "VKRAY_FAULT_NO_OFFSET", "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64"})
+          "VKRAY_FAULT_NO_OFFSET", "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64",
+          "VKRAY_OBJECTS"})
         flags.push_back(other);
     return flags;
 }
@@ -141,8 +153,8 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
                                         {BINDING_MATERIALS, "materials", Texels}};
     if (features.lights || features.has(Shading::Shadows))
         bindings.push_back({BINDING_LIGHTS, "lights", Texels});
-    bindings.push_back({BINDING_PIXELS, "pixels", Storage});
-    bindings.push_back({BINDING_PROGRESS, "ray progress", Storage});
+    bindings.push_back({BINDING_PIXELS, "pixels", Texels});
+    bindings.push_back({BINDING_PROGRESS, "ray progress", Texels});
     bindings.push_back({BINDING_STATUS, "dispatch status", Storage});
     if (features.has(Shading::Reflection) || features.has(Shading::Refraction))
         bindings.push_back({BINDING_RAY_STACK, "pending rays", Storage});

@@ -38,7 +38,8 @@ inline constexpr std::array<GpuKind, 8> kGpuKinds{{
 std::uint32_t gpuKindOf(ShapeType type);
 
 // More bounded objects than this are found through a BVH; below it, testing
-// each object is cheaper than walking nodes.
+// each object is cheaper than walking nodes. Up to this many objects, too,
+// are tested in an unrolled loop (ShaderFeatures::unrolledObjects).
 inline constexpr std::size_t kObjectBvhThreshold = 8;
 
 // Whitted shading (docs/shading.md), each part compiled in only where a
@@ -65,6 +66,10 @@ struct ShaderFeatures {
     bool debugPixel = false;    // `vkray pixel`: the shader writes a trace record
     bool stressOutput = false;  // `vkray stress`, `vkray pixel`: GpuStressSample per pixel
     bool doubles = false;       // --precision fp64: camera and M^-1 read in double
+    // VKRAY_OBJECTS: the object count, when the shader tests each object in
+    // turn in a loop it unrolls (a few objects, no BVH, closed-form shapes
+    // only); 0: a loop over the count read at run time.
+    std::uint32_t unrolledObjects = 0;
 
     bool has(Shading s) const { return shading[size_t(s)]; }
     bool operator==(const ShaderFeatures&) const = default;
@@ -81,8 +86,9 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines = 
 
 // Every flag a variant defines, 0 or 1: the shapes, the shading features,
 // VKRAY_LIGHTS, VKRAY_OBJECT_BVH, VKRAY_DEBUG_PIXEL, VKRAY_STRESS_OUTPUT, the
-// test hook VKRAY_FAULT_NO_OFFSET and the precision modes' two. The one
-// list; shaders/variant_flags.glsl checks each is defined.
+// test hook VKRAY_FAULT_NO_OFFSET and the precision modes' two; and the one
+// count, VKRAY_OBJECTS. The one list; shaders/variant_flags.glsl checks each
+// is defined.
 std::vector<std::string> variantFlags();
 
 // "sphere+cube", "all shapes", "no shapes", then the shading features

@@ -64,8 +64,10 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
         {"frame parameters", 1, sizeof(FrameParams), true, "Use another --device"},
         need(BINDING_OBJECTS, "objects", packed.objects, fewerObjects),
         need(BINDING_MATERIALS, "materials", packed.materials, fewerObjects),
-        {"tile pixels", tilePixels, sizeof(GpuPixel), false, "Use a smaller --block"},
-        {"ray progress", tileRays, sizeof(GpuRayProgress), false, "Use a smaller --block"},
+        {"tile pixels", tilePixels, sizeof(GpuPixel), false, "Use a smaller --block",
+         sizeof(uvec4)},
+        {"ray progress", tileRays, sizeof(GpuRayProgress), false, "Use a smaller --block",
+         sizeof(uvec4)},
     };
     if (kinds.count(BINDING_LIGHTS))
         needs.push_back(need(BINDING_LIGHTS, "lights", packed.lights, "Use fewer lights"));
@@ -108,7 +110,10 @@ vk::DescriptorType descriptorTypeOf(BindingKind kind) {
 
 template <typename T>
 void TracePass::add(uint binding, const std::vector<T>& items) {
-    buffers_.emplace(binding, makeBuffer(c_, items, useOf(kindOf(binding)).usage));
+    vk::BufferUsageFlags usage = useOf(kindOf(binding)).usage;
+    // `vkray view`'s presenter reads the tile's pixels as a storage buffer.
+    if (binding == BINDING_PIXELS) usage |= vk::BufferUsageFlagBits::eStorageBuffer;
+    buffers_.emplace(binding, makeBuffer(c_, items, usage));
 }
 
 BindingKind TracePass::kindOf(uint binding) const {

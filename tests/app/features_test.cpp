@@ -46,7 +46,9 @@ TEST_F(Features, DefaultSceneReport) {
     EXPECT_EQ(field(run.output, "shapes"), "2 sphere, 1 plane, 1 square, 1 cube");
     EXPECT_EQ(field(run.output, "booleans"), "none");
     EXPECT_EQ(field(run.output, "meshes"), "none");
-    EXPECT_EQ(field(run.output, "object BVH"), "no (4 bounded objects; more than 8 get one)");
+    EXPECT_EQ(field(run.output, "object BVH"),
+              "no (4 bounded objects; more than 8 get one); each object tested in turn, "
+              "the loop unrolled over the 5");
     EXPECT_EQ(field(run.output, "lights"), "3");
     EXPECT_EQ(field(run.output, "shadows"), "yes (3 lights, 5 objects)");
     EXPECT_EQ(field(run.output, "reflection"),
@@ -54,7 +56,7 @@ TEST_F(Features, DefaultSceneReport) {
     EXPECT_EQ(field(run.output, "variant"), "sphere+plane+square+cube+shadows");
     EXPECT_EQ(field(run.output, "defines"),
               "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_SQUARE=1 VKRAY_SHAPE_CUBE=1 "
-              "VKRAY_SHADOWS=1 VKRAY_LIGHTS=1 (every other variant flag 0)");
+              "VKRAY_SHADOWS=1 VKRAY_LIGHTS=1 VKRAY_OBJECTS=5 (every other variant flag 0)");
     // GpuObjectGeometry is 4 vec4 (64 bytes), GpuMaterial 6 (96), GpuLight 2
     // (32), FrameParams 9 (144).
     const std::vector<std::string> expected{
@@ -62,8 +64,8 @@ TEST_F(Features, DefaultSceneReport) {
         "1 objects texels 320 bytes (5 x 64)",
         "18 materials texels 480 bytes (5 x 96)",
         "2 lights texels 96 bytes (3 x 32)",
-        "3 pixels storage one tile of 32-byte pixels",
-        "15 ray progress storage one tile of 32-byte ray states",
+        "3 pixels texels one tile of 32-byte pixels",
+        "15 ray progress texels one tile of 32-byte ray states",
         "16 dispatch status storage 16 bytes",
     };
     EXPECT_EQ(buffers(run.output), expected) << run.output;

@@ -122,6 +122,15 @@ TEST(DeviceLimits, TileShrinksToFitThePixelBufferAndWorkgroupCount) {
     EXPECT_EQ(fitTileSide(256, 3, 32, 8, 8, limits), 48);
 }
 
+TEST(DeviceLimits, TileShrinksToFitThePixelTexelBuffer) {
+    DeviceLimits limits = smallDevice();
+    limits.maxStorageBufferRange = 1u << 30;
+    // The shader writes pixels as 16-byte texels: 8192 texels hold 4096
+    // 32-byte pixels, a 64 x 64 tile.
+    limits.maxTexelBufferElements = 8192;
+    EXPECT_EQ(fitTileSide(256, 1, 32, 8, 8, limits), 64);
+}
+
 TEST(DeviceLimits, BlockTooLargeForOnePixelBufferIsRefused) {
     DeviceLimits limits = smallDevice();
     limits.maxStorageBufferRange = 1000;

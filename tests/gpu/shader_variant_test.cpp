@@ -102,6 +102,26 @@ TEST(ShaderVariant, AScenesOwnShadingOnly) {
     EXPECT_FALSE(hasDefine(plain, "VKRAY_SHADOWS"));
 }
 
+TEST(ShaderVariant, AFewClosedFormObjectsAreTestedInAnUnrolledLoop) {
+    EXPECT_EQ(featuresOfText("sphere cube plane").unrolledObjects, 3u);
+    std::string eight;
+    for (int i = 0; i < 8; ++i) eight += "sphere ";
+    EXPECT_EQ(featuresOfText(eight).unrolledObjects, 8u);
+    // A BVH, the all-features shader (any scene) and shapes whose code
+    // holds loops of its own keep the loop over the run-time count.
+    const std::string nine = eight + "sphere";
+    EXPECT_TRUE(featuresOfText(nine).objectBvh);
+    EXPECT_EQ(featuresOfText(nine).unrolledObjects, 0u);
+    EXPECT_EQ(featuresOfText("sphere cube", 1, true).unrolledObjects, 0u);
+    EXPECT_EQ(featuresOfText("sphere torus").unrolledObjects, 0u);
+    EXPECT_EQ(featuresOfText("sphere tetrahedron").unrolledObjects, 0u);
+    EXPECT_EQ(featuresOfText("sphere difference sphere cube").unrolledObjects, 0u);
+    const Defines defines = definesFor(featuresOfText("sphere cube"));
+    EXPECT_NE(std::find(defines.begin(), defines.end(), std::pair<std::string, std::string>(
+                                                            "VKRAY_OBJECTS", "2")),
+              defines.end());
+}
+
 TEST(ShaderVariant, ShadowsWhereAFeelerCanMeetAnObject) {
     EXPECT_TRUE(featuresOfText("light 1 2 3 1 1 1 sphere cube").has(Shading::Shadows));
     // No light, or a lone plane or square: no feeler can meet anything.
