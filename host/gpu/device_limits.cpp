@@ -124,8 +124,9 @@ int fitTileSide(int wanted, int block, std::size_t pixelBytes, std::uint32_t wor
             ? std::min(limits.maxStorageBufferRange, limits.maxMemoryAllocationSize)
             : limits.maxStorageBufferRange;
     // The shader writes it as a texel buffer of 16-byte texels, too.
-    const std::uint64_t byBuffer = std::uint64_t(std::sqrt(double(std::min(
-        bufferLimit / pixelBytes, std::uint64_t(limits.maxTexelBufferElements) * 16 / pixelBytes))));
+    const std::uint64_t byBuffer = std::uint64_t(std::sqrt(
+        double(std::min(bufferLimit / pixelBytes,
+                        std::uint64_t(limits.maxTexelBufferElements) * 16 / pixelBytes))));
     // ceil(ceil(side / block) / workgroup) <= maxWorkgroupCount on each axis.
     const std::uint64_t byCount =
         std::uint64_t(block) * std::min(std::uint64_t(limits.maxWorkgroupCount[0]) * workgroupX,

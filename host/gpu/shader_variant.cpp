@@ -79,8 +79,8 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
     // unrolled test inlines every shape's code, so the shapes with loops of
     // their own (torus, mesh, CSG) keep the loop: their code is too large to
     // be compiled eight times.
-    const bool closedForm = !features.kinds[KIND_TORUS] && !features.kinds[KIND_MESH] &&
-                            !features.kinds[KIND_BOOLEAN];
+    const bool closedForm =
+        !features.kinds[KIND_TORUS] && !features.kinds[KIND_MESH] && !features.kinds[KIND_BOOLEAN];
     if (!allFeatures && !features.objectBvh && closedForm &&
         scene.objects.size() <= kObjectBvhThreshold)
         features.unrolledObjects = std::uint32_t(scene.objects.size());
@@ -112,10 +112,9 @@ std::vector<std::string> variantFlags() {
     std::vector<std::string> flags;
     for (const GpuKind& kind : kGpuKinds) flags.push_back(kind.define);
     for (const GpuShading& shading : kGpuShading) flags.push_back(shading.define);
-    for (const char* other :
-         {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_DEBUG_PIXEL", "VKRAY_STRESS_OUTPUT",
-          "VKRAY_FAULT_NO_OFFSET", "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64",
-          "VKRAY_OBJECTS"})
+    for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_DEBUG_PIXEL",
+                              "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET",
+                              "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64", "VKRAY_OBJECTS"})
         flags.push_back(other);
     return flags;
 }

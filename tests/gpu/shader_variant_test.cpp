@@ -117,8 +117,8 @@ TEST(ShaderVariant, AFewClosedFormObjectsAreTestedInAnUnrolledLoop) {
     EXPECT_EQ(featuresOfText("sphere tetrahedron").unrolledObjects, 0u);
     EXPECT_EQ(featuresOfText("sphere difference sphere cube").unrolledObjects, 0u);
     const Defines defines = definesFor(featuresOfText("sphere cube"));
-    EXPECT_NE(std::find(defines.begin(), defines.end(), std::pair<std::string, std::string>(
-                                                            "VKRAY_OBJECTS", "2")),
+    EXPECT_NE(std::find(defines.begin(), defines.end(),
+                        std::pair<std::string, std::string>("VKRAY_OBJECTS", "2")),
               defines.end());
 }
 
