@@ -57,29 +57,32 @@ bool intersectTriangle(ShearedRay r, rvec3 p0, rvec3 p1, rvec3 p2, real tMin, re
     return true;
 }
 
-// Where a mesh's walk starts: the t (`enter`, from the root box's test) at
-// which the ray enters the mesh's root box, 0 when it starts inside or past
-// it. The walk and the triangle tests measure from o + shift d, and add
-// shift back to every t. A generic origin far from the mesh (|M^-1 eye| =
-// 4e10 for a teapot squashed by 1.8e-6 between rotations seen from 1e5, the
-// generic direction 4e5 long) makes every slab distance (lo - o) / d about
-// |o| / |d|: float rounds all of them alike, and hitsBox's widening of the
-// far end (3.6e-7 of it, 0.035 of the world t 1e5, 1.4e4 generic units along
-// the ray) is thousands of times the mesh, so every box passed and every one
-// of the teapot's 16256 triangles was tested, past llvmpipe's loop limit.
-// From the entry point the distances are those of the boxes. The start is
-// o + shift d rounded once (fma): it stays on the ray to the rounding of
-// its own small coordinates. The textbook mode keeps the far origin.
+// Where a mesh's walk starts: o, or from a generic origin far from the mesh
+// the point where the ray enters the mesh's root box (`enter`, its t), the
+// walk and the triangle tests then measuring from o + shift d and adding
+// shift back to every t. From far away (|M^-1 eye| = 4e10 for a teapot
+// squashed by 1.8e-6 between rotations seen from 1e5, the generic direction
+// 4e5 long) every slab distance (lo - o) / d is about |o| / |d|: float
+// rounds all of them alike, and hitsBox's widening of the far end (3.6e-7
+// of it: 0.035 of the world t 1e5, 1.4e4 generic units along the ray) is
+// thousands of times the mesh, so every box passed and each of the
+// teapot's 16256 triangles was tested, past llvmpipe's loop limit. From the
+// entry point the distances are those of the boxes. The start is o + shift d
+// rounded once (fma), on the ray to the rounding of its own small
+// coordinates. Within MESH_FAR_SIZES of the mesh's size nothing is gained
+// and the walk starts at o; the textbook mode always does.
+const float MESH_FAR_SIZES = 1024.0;
 #if VKRAY_PRECISION_FP64
 const double MESH_LOCAL_SLACK = 4.4408920985006262e-16lf;  // 2^-51, four units of double's rounding
 #else
 const float MESH_LOCAL_SLACK = 2.3841858e-7;  // 2^-22, four units of float's rounding
 #endif
-real meshWalkShift(real enter) {
+real meshWalkShift(GpuBvhNode root, rvec3 d, real enter) {
 #if VKRAY_PRECISION_NAIVE
     return 0.0;
 #else
-    return max(enter, real(0.0));
+    float size = length(root.hi.xyz - root.lo.xyz);
+    return enter * length(d) > real(MESH_FAR_SIZES * size) ? enter : real(0.0);
 #endif
 }
 
@@ -97,7 +100,7 @@ bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real 
     // + local, taken only within (tMin, tMax) as such. tMin - shift is exact
     // (where shift is not 0, tMin is 0 or -inf); the far bound is widened by
     // its rounding, so no box or hit short of tMax is lost.
-    real shift = meshWalkShift(enter);
+    real shift = meshWalkShift(root, d, enter);
     rvec3 start = fma(rvec3(shift), d, o);
     ShearedRay sheared = shearRay(start, d);
     real localMin = tMin - shift;
@@ -189,7 +192,7 @@ bool meshSpan(uint index, rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real 
     GpuBvhNode root = meshNode(mesh.range.x);
     if (!hitsBox(root.lo.xyz, root.hi.xyz, o, invD, -INF, INF, enter)) return false;
     // Measured from where the line enters the root box, as in intersectMesh.
-    real shift = meshWalkShift(enter);
+    real shift = meshWalkShift(root, d, enter);
     rvec3 start = fma(rvec3(shift), d, o);
     ShearedRay sheared = shearRay(start, d);
     uint stack[BVH_STACK_SIZE];  // nodes the line crosses (bvhNodeCode)
