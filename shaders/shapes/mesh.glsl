@@ -69,9 +69,10 @@ bool intersectTriangle(ShearedRay r, rvec3 p0, rvec3 p1, rvec3 p2, real tMin, re
 // teapot's 16256 triangles was tested, past llvmpipe's loop limit. From the
 // entry point the distances are those of the boxes. The start is o + shift d
 // rounded once (fma), on the ray to the rounding of its own small
-// coordinates. Within MESH_FAR_SIZES of the mesh's size nothing is gained
-// and the walk starts at o; the textbook mode always does.
-const float MESH_FAR_SIZES = 1024.0;
+// coordinates. Nearer than MESH_FAR_SIZES times the mesh's size (its root
+// box's diagonal) the widening is under 0.024 of the mesh, a leaf box's
+// size, and the walk starts at o, as it always does in the textbook mode.
+const float MESH_FAR_SIZES = 65536.0;
 #if VKRAY_PRECISION_FP64
 const double MESH_LOCAL_SLACK = 4.4408920985006262e-16lf;  // 2^-51, four units of double's rounding
 #else
