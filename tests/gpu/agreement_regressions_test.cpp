@@ -178,9 +178,9 @@ TEST(AgreementRegressions, ATeapotSquashedBetweenRotationsFarAwayWalksOnlyTheBox
     const CameraBasis camera = makeCameraBasis(*scene.camera, settings.width, settings.height);
     for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
         SCOPED_TRACE(precisionName(precision));
-        gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir,
-                                                   .precision = precision,
-                                                   .turnBudget = 1000});
+        gpu::GpuTracer tracer(
+            test::gpuContext(),
+            {.shaderDirectory = test::kShaderDir, .precision = precision, .turnBudget = 1000});
         gpu::GpuRenderStats stats;
         tracer.render(scene, camera, settings, &stats);
         EXPECT_EQ(stats.dispatches, stats.tiles);
