@@ -132,7 +132,7 @@ for sweep in "${sweeps[@]}"; do
             check "$(squash "$shape" 1e-8 inner)" robust "$shape inner 1e-8"
             check "$(squash "$shape" 1e-5 outer)" fp64 "$shape outer 1e-5"
         done
-        for shape in cube sphere icosahedron; do
+        for shape in cube sphere icosahedron teapot; do
             for ratio in 1e-8 1e-10 1e-12; do check "$(squash "$shape" "$ratio" outer)" fp64 "$shape outer $ratio"; done
         done
         ;;

@@ -352,11 +352,7 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
         const char* shapes[] = {"cube", "sphere", "icosahedron", "teapot"};
         const int shape = d.below(4);
         const bool after = kind == 2;
-        // fp64's teapot goes to its own figure (beyond, one ray runs past
-        // llvmpipe's loop limit: refused).
-        const double smallest = !after       ? env.smallestInnerSquash
-                                : shape == 3 ? std::max(env.smallestSquash, 1e-5)
-                                             : env.smallestSquash;
+        const double smallest = after ? env.smallestSquash : env.smallestInnerSquash;
         const double ratio = written(1 / toward(d, 1, 1 / smallest));
         const double a = d.range(1, 2), b = d.range(1, 2);
         const dvec3 scale = written(dvec3(a, b, ratio * std::max(a, b)));
@@ -447,8 +443,8 @@ SceneEnvelope envelopeOf(Precision precision) {
     // robust to 1.6e4 radii seen from any direction (textures while
     // |M^-1 eye| / cell <= 5e3), a squash after the rotation to 1e-4 seen
     // from a few sizes, one before it to 1e-8, a huge sphere seen from close
-    // to R / H = 1e7; fp64 to 1e6 radii (cells of 0.05 there), 1e-10 (the
-    // teapot 1e-5), R / H = 2e7.
+    // to R / H = 1e7; fp64 to 1e6 radii (cells of 0.05 there), 1e-10,
+    // R / H = 2e7.
     // Several objects, as `vkray difftest` measured them (secondary rays
     // between objects start an offset off the surface that grows with the
     // eye's distance). Every scene keeps the eye within 1e6 of the world's

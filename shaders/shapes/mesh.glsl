@@ -57,27 +57,64 @@ bool intersectTriangle(ShearedRay r, rvec3 p0, rvec3 p1, rvec3 p2, real tMin, re
     return true;
 }
 
+// Where a mesh's walk starts: o, or from a generic origin far from the mesh
+// the point where the ray enters the mesh's root box (`enter`, its t), the
+// walk and the triangle tests then measuring from o + shift d and adding
+// shift back to every t. From far away (|M^-1 eye| = 4e10 for a teapot
+// squashed by 1.8e-6 between rotations seen from 1e5, the generic direction
+// 4e5 long) every slab distance (lo - o) / d is about |o| / |d|: float
+// rounds all of them alike, and hitsBox's widening of the far end (3.6e-7
+// of it: 0.035 of the world t 1e5, 1.4e4 generic units along the ray) is
+// thousands of times the mesh, so every box passed and each of the
+// teapot's 16256 triangles was tested, past llvmpipe's loop limit. From the
+// entry point the distances are those of the boxes. The start is o + shift d
+// rounded once (fma), on the ray to the rounding of its own small
+// coordinates. Nearer than MESH_FAR_SIZES times the mesh's size (its root
+// box's diagonal) the widening is under 0.024 of the mesh, a leaf box's
+// size, and the walk starts at o, as it always does in the textbook mode.
+const float MESH_FAR_SIZES = 65536.0;
+#if VKRAY_PRECISION_FP64
+const double MESH_LOCAL_SLACK = 4.4408920985006262e-16lf;  // 2^-51, four units of double's rounding
+#else
+const float MESH_LOCAL_SLACK = 2.3841858e-7;  // 2^-22, four units of float's rounding
+#endif
+real meshWalkShift(GpuBvhNode root, rvec3 d, real enter) {
+#if VKRAY_PRECISION_NAIVE
+    return 0.0;
+#else
+    float size = length(root.hi.xyz - root.lo.xyz);
+    return enter * length(d) > real(MESH_FAR_SIZES * size) ? enter : real(0.0);
+#endif
+}
+
 // The nearest triangle of mesh `index` in (tMin, tMax), with the interpolated
 // normal and the triangle's own (geometric) one, unnormalised.
 bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real t, out rvec3 normal,
                    out rvec3 geometricNormal) {
     GpuMesh mesh = meshOf(index);
-    ShearedRay sheared = shearRay(o, d);
     rvec3 invD = 1.0 / d;
+    t = tMax;
+    real enter;
+    GpuBvhNode root = meshNode(mesh.range.x);
+    if (!hitsBox(root.lo.xyz, root.hi.xyz, o, invD, tMin, tMax, enter)) return false;
+    // From the start on, t is measured from it (`local`); a hit's t is shift
+    // + local, taken only within (tMin, tMax) as such. tMin - shift is exact
+    // (where shift is not 0, tMin is 0 or -inf); the far bound is widened by
+    // its rounding, so no box or hit short of tMax is lost.
+    real shift = meshWalkShift(root, d, enter);
+    rvec3 start = fma(rvec3(shift), d, o);
+    ShearedRay sheared = shearRay(start, d);
+    real localMin = tMin - shift;
+    real local = tMax - shift;
+    local += abs(local) * MESH_LOCAL_SLACK;
     bool found = false;
     uint nearest = 0u;  // the triangle of the closest hit so far
     rvec3 nearestBarycentric = rvec3(0.0);
-    t = tMax;
     uint stack[BVH_STACK_SIZE];  // as in walkScene (trace.comp)
     real stackEnter[BVH_STACK_SIZE];
-    uint top = 0u;
-    real enter;
-    GpuBvhNode root = meshNode(mesh.range.x);
-    if (hitsBox(root.lo.xyz, root.hi.xyz, o, invD, tMin, t, enter)) {
-        stack[0] = bvhNodeCode(root);
-        stackEnter[0] = enter;
-        top = 1u;
-    }
+    stack[0] = bvhNodeCode(root);
+    stackEnter[0] = enter - shift;
+    uint top = 1u;
     uint leafFirst = 0u, leafCount = 0u;
     while (true) {
         loopTurns += leafCount;
@@ -85,8 +122,10 @@ bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real 
             real tHit;
             rvec3 bary;
             if (intersectTriangle(sheared, triangleCorner(i, 0u), triangleCorner(i, 1u),
-                                  triangleCorner(i, 2u), tMin, t, tHit, bary)) {
-                t = tHit;
+                                  triangleCorner(i, 2u), localMin, local, tHit, bary) &&
+                shift + tHit > tMin && shift + tHit < tMax) {
+                local = tHit;
+                t = shift + tHit;
                 nearest = i;
                 nearestBarycentric = bary;
                 found = true;
@@ -102,7 +141,7 @@ bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real 
                 uint code = 0u;
                 while (top > 0u && !kept) {
                     --top;
-                    kept = stackEnter[top] <= t;
+                    kept = stackEnter[top] <= local;
                     code = stack[top];
                 }
                 if (!kept) break;
@@ -116,7 +155,7 @@ bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real 
             uint nearCode, farCode;
             real farEnter;
             int hits = orderChildren(meshNode(mesh.range.x + children), meshNode(mesh.range.x + children + 1u),
-                                     o, invD, tMin, t, nearCode, farCode, farEnter);
+                                     start, invD, localMin, local, nearCode, farCode, farEnter);
             if (hits == 2) {
                 stack[top] = farCode;
                 stackEnter[top++] = farEnter;
@@ -146,23 +185,27 @@ bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real 
 // whole line, with their normals.
 bool meshSpan(uint index, rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real t1, out rvec3 n1) {
     GpuMesh mesh = meshOf(index);
-    ShearedRay sheared = shearRay(o, d);
     rvec3 invD = 1.0 / d;
     const real INF = 1.0 / 0.0;
-    uint stack[BVH_STACK_SIZE];  // nodes the line crosses (bvhNodeCode)
-    uint top = 0u;
     t0 = INF;
     t1 = -INF;
     real enter;
     GpuBvhNode root = meshNode(mesh.range.x);
-    if (hitsBox(root.lo.xyz, root.hi.xyz, o, invD, -INF, INF, enter)) stack[top++] = bvhNodeCode(root);
+    if (!hitsBox(root.lo.xyz, root.hi.xyz, o, invD, -INF, INF, enter)) return false;
+    // Measured from where the line enters the root box, as in intersectMesh.
+    real shift = meshWalkShift(root, d, enter);
+    rvec3 start = fma(rvec3(shift), d, o);
+    ShearedRay sheared = shearRay(start, d);
+    uint stack[BVH_STACK_SIZE];  // nodes the line crosses (bvhNodeCode)
+    stack[0] = bvhNodeCode(root);
+    uint top = 1u;
     while (top > 0u) {
         ++loopTurns;
         uint code = stack[--top], first = code >> 3u, count = code & 7u;
         if (count == 0u) {
             GpuBvhNode a = meshNode(mesh.range.x + first), b = meshNode(mesh.range.x + first + 1u);
-            if (hitsBox(a.lo.xyz, a.hi.xyz, o, invD, -INF, INF, enter)) stack[top++] = bvhNodeCode(a);
-            if (hitsBox(b.lo.xyz, b.hi.xyz, o, invD, -INF, INF, enter)) stack[top++] = bvhNodeCode(b);
+            if (hitsBox(a.lo.xyz, a.hi.xyz, start, invD, -INF, INF, enter)) stack[top++] = bvhNodeCode(a);
+            if (hitsBox(b.lo.xyz, b.hi.xyz, start, invD, -INF, INF, enter)) stack[top++] = bvhNodeCode(b);
             continue;
         }
         for (uint i = mesh.range.y + first; i < mesh.range.y + first + count; ++i) {
@@ -174,6 +217,7 @@ bool meshSpan(uint index, rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real 
                 continue;
             rvec3 normal = bary.x * triangleNormal(i, 0u) + bary.y * triangleNormal(i, 1u) +
                            bary.z * triangleNormal(i, 2u);
+            t += shift;
             if (t < t0) { t0 = t; n0 = normal; }
             if (t > t1) { t1 = t; n1 = normal; }
         }
