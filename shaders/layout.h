@@ -59,7 +59,7 @@ VKRAY_CONST(uint, BINDING_DOUBLE_CAMERA, 13u);   // fp64 variant: buffer GpuDoub
 VKRAY_CONST(uint, BINDING_DOUBLE_OBJECTS, 14u);  // fp64 variant: texels: GpuDoubleObject[]
 VKRAY_CONST(uint, BINDING_PROGRESS, 15u);  // texels: GpuRayProgress[]: each ray's state between dispatches
 VKRAY_CONST(uint, BINDING_STATUS, 16u);    // buffer GpuDispatchStatus: what one dispatch left undone
-VKRAY_CONST(uint, BINDING_RAY_STACK, 17u); // reflection/refraction variants: buffer GpuRayTask[] (or double)
+VKRAY_CONST(uint, BINDING_RAY_STACK, 17u); // reflection/refraction variants: texels: GpuRayTask[] (or double)
 VKRAY_CONST(uint, BINDING_MATERIALS, 18u); // texels: GpuMaterial[] (read once a hit)
 VKRAY_CONST(uint, BINDING_STRESS_OUTPUT, 19u);  // stress-output variant: buffer GpuStressSample[] (one tile)
 
@@ -73,6 +73,8 @@ VKRAY_CONST(uint, TRIANGLE_TEXELS, 6u);
 VKRAY_CONST(uint, DOUBLE_OBJECT_TEXELS, 8u);  // a dvec4 is two texels
 VKRAY_CONST(uint, PIXEL_TEXELS, 2u);          // GpuPixel: color, normal
 VKRAY_CONST(uint, RAY_PROGRESS_TEXELS, 2u);   // GpuRayProgress: sum, color
+VKRAY_CONST(uint, RAY_TASK_TEXELS, 4u);       // GpuRayTask
+VKRAY_CONST(uint, DOUBLE_RAY_TASK_TEXELS, 6u);  // GpuDoubleRayTask: a dvec4 is two texels
 
 // Bounds of the shader's fixed-size stacks; the host refuses scenes beyond them.
 VKRAY_CONST(uint, BVH_STACK_SIZE, 48u);  // BVH depth (kMaxBvhDepth on the host)

@@ -192,24 +192,48 @@ struct RayTask {
 
 // Rays waiting. Taking one adds at most two, one level deeper, so
 // maxRecursionDepth + 1 entries (frame.sampling.w) hold the deepest tree.
-// With secondary rays they live in a storage buffer, frame.sampling.w per
+// With secondary rays they live in a texel buffer, frame.sampling.w per
 // invocation, so that they outlast a dispatch; without, the one pending ray
 // is a sample's primary ray, made again when a dispatch resumes.
 #define VKRAY_RAY_STACK (VKRAY_REFLECTION || VKRAY_REFRACTION)
 #if VKRAY_RAY_STACK
-#if VKRAY_PRECISION_FP64
-#define PendingRayEntry GpuDoubleRayTask
-#else
-#define PendingRayEntry GpuRayTask
-#endif
-layout(std430, set = 0, binding = BINDING_RAY_STACK) buffer RayStackBlock { PendingRayEntry pendingRays[]; };
+// Texels, as the pixels (trace.comp): GpuRayTask, or GpuDoubleRayTask in fp64.
+layout(set = 0, binding = BINDING_RAY_STACK, rgba32ui) uniform uimageBuffer pendingRayTexels;
 uint rayStackBase;  // this invocation's first entry
 
+#if VKRAY_PRECISION_FP64
+const uint PENDING_RAY_TEXELS = DOUBLE_RAY_TASK_TEXELS;
+void storeReal4(int at, dvec4 v) {
+    imageStore(pendingRayTexels, at, uvec4(unpackDouble2x32(v.x), unpackDouble2x32(v.y)));
+    imageStore(pendingRayTexels, at + 1, uvec4(unpackDouble2x32(v.z), unpackDouble2x32(v.w)));
+}
+dvec4 loadReal4(int at) {
+    uvec4 xy = imageLoad(pendingRayTexels, at), zw = imageLoad(pendingRayTexels, at + 1);
+    return dvec4(packDouble2x32(xy.xy), packDouble2x32(xy.zw), packDouble2x32(zw.xy),
+                 packDouble2x32(zw.zw));
+}
+#else
+const uint PENDING_RAY_TEXELS = RAY_TASK_TEXELS;
+void storeReal4(int at, vec4 v) { imageStore(pendingRayTexels, at, floatBitsToUint(v)); }
+vec4 loadReal4(int at) { return texelAsVec4(imageLoad(pendingRayTexels, at)); }
+#endif
+const int REAL4_TEXELS = int(PENDING_RAY_TEXELS - 2u) / 2;  // 1, or 2 in fp64
+
 void pushRay(inout uint top, RayTask task) {
-    pendingRays[rayStackBase + top++] =
-        PendingRayEntry(rvec4(task.origin, real(task.level)),
-                        rvec4(task.direction, real(task.medium.depth)), vec4(task.weight, 0.0),
-                        task.medium.speeds);
+    int at = int((rayStackBase + top++) * PENDING_RAY_TEXELS);
+    storeReal4(at, rvec4(task.origin, real(task.level)));
+    storeReal4(at + REAL4_TEXELS, rvec4(task.direction, real(task.medium.depth)));
+    imageStore(pendingRayTexels, at + 2 * REAL4_TEXELS, floatBitsToUint(vec4(task.weight, 0.0)));
+    imageStore(pendingRayTexels, at + 2 * REAL4_TEXELS + 1, floatBitsToUint(task.medium.speeds));
+}
+
+RayTask popRay(inout uint top) {
+    int at = int((rayStackBase + --top) * PENDING_RAY_TEXELS);
+    rvec4 origin = loadReal4(at), direction = loadReal4(at + REAL4_TEXELS);
+    vec4 weight = texelAsVec4(imageLoad(pendingRayTexels, at + 2 * REAL4_TEXELS));
+    vec4 speeds = texelAsVec4(imageLoad(pendingRayTexels, at + 2 * REAL4_TEXELS + 1));
+    return RayTask(origin.xyz, direction.xyz, weight.rgb, uint(origin.w),
+                   Medium(speeds, uint(direction.w)));
 }
 #else
 RayTask pendingRay;
@@ -218,18 +242,12 @@ void pushRay(inout uint top, RayTask task) {
     pendingRay = task;
     ++top;
 }
-#endif
 
 RayTask popRay(inout uint top) {
-#if VKRAY_RAY_STACK
-    PendingRayEntry entry = pendingRays[rayStackBase + --top];
-    return RayTask(entry.origin.xyz, entry.direction.xyz, entry.weight.rgb, uint(entry.origin.w),
-                   Medium(entry.speeds, uint(entry.direction.w)));
-#else
     --top;
     return pendingRay;
-#endif
 }
+#endif
 
 RayTask primaryTask(uint k) {
     return RayTask(rayEye(), sampleDirection(k), vec3(1.0), 0u, Medium(vec4(1.0), 0u));

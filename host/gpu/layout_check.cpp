@@ -32,6 +32,8 @@ static_assert(sizeof(GpuTriangle) == TRIANGLE_TEXELS * kTexel);
 static_assert(sizeof(GpuDoubleObject) == DOUBLE_OBJECT_TEXELS * kTexel);
 static_assert(sizeof(GpuPixel) == PIXEL_TEXELS * kTexel);
 static_assert(sizeof(GpuRayProgress) == RAY_PROGRESS_TEXELS * kTexel);
+static_assert(sizeof(GpuRayTask) == RAY_TASK_TEXELS * kTexel);
+static_assert(sizeof(GpuDoubleRayTask) == DOUBLE_RAY_TASK_TEXELS * kTexel);
 static_assert(sizeof(GpuMesh) == kTexel && sizeof(GpuCsgNode) == kTexel &&
               sizeof(GpuPixmap) == kTexel);
 

@@ -74,7 +74,7 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     if (pendingRays > 0)
         needs.push_back({"pending rays", pendingRays,
                          doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask), false,
-                         "Use a smaller maxRecursionDepth"});
+                         "Use a smaller maxRecursionDepth", sizeof(uvec4)});
     if (features.debugPixel)
         needs.push_back(
             {"debug entries", debugEntries, sizeof(GpuDebugEntry), false, fewerObjects});
