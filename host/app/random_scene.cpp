@@ -508,6 +508,10 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
         if (kind == 0 && i == 0 && !near) {
             p.plane = true;
             p.at = written(dvec3(0, -extent, 0));
+            // Untextured: near its horizon a plane's hits lie arbitrarily
+            // far, and no mode places them to a cell there (docs/numerics.md,
+            // "Envelope").
+            p.texture = 0;
         } else if (kind <= 2) {
             // A boolean of two primitives (convex meshes only: the polyhedra).
             const char* ops[] = {"union", "intersection", "difference"};
