@@ -196,7 +196,10 @@ std::uint32_t Context::Impl::findMemoryType(std::uint32_t typeBits,
     for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i)
         if ((typeBits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & flags) == flags)
             return i;
-    throw Error("the Vulkan device has no host-visible memory type for vkray's buffers");
+    throw Error(
+        std::string("the Vulkan device has no ") +
+        (flags & vk::MemoryPropertyFlagBits::eHostVisible ? "host-visible" : "device-local") +
+        " memory type for vkray's buffers");
 }
 
 std::vector<DeviceInfo> Context::listDevices(int* preferred) {
@@ -308,23 +311,27 @@ int Context::validationMessages() const {
     return impl_->validationMessages.load();
 }
 
-HostBuffer::HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUsageFlags usage)
+HostBuffer::HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUsageFlags usage,
+                       BufferMemory memory)
     : size_(size), device_(&context.device) {
     if (injectedFault() == Fault::OutOfDeviceMemory)
         throw vk::OutOfDeviceMemoryError("vkAllocateMemory (injected by VKRAY_FAULT)");
     buffer_ = vk::raii::Buffer(context.device, {{}, size, usage, vk::SharingMode::eExclusive});
     auto requirements = buffer_.getMemoryRequirements();
     auto properties = context.physicalDevice.getMemoryProperties();
+    const bool local = memory == BufferMemory::DeviceLocal;
     std::uint32_t type = context.findMemoryType(requirements.memoryTypeBits,
-                                                vk::MemoryPropertyFlagBits::eHostVisible);
+                                                local ? vk::MemoryPropertyFlagBits::eDeviceLocal
+                                                      : vk::MemoryPropertyFlagBits::eHostVisible);
     coherent_ = bool(properties.memoryTypes[type].propertyFlags &
                      vk::MemoryPropertyFlagBits::eHostCoherent);
     memory_ = vk::raii::DeviceMemory(context.device, {requirements.size, type});
     buffer_.bindMemory(*memory_, 0);
-    mapped_ = memory_.mapMemory(0, VK_WHOLE_SIZE);
+    if (!local) mapped_ = memory_.mapMemory(0, VK_WHOLE_SIZE);
 }
 
 void HostBuffer::upload(const void* source, vk::DeviceSize bytes) {
+    if (!mapped_) throw Error("internal: an upload to a device-local buffer without staging");
     std::memcpy(mapped_, source, size_t(bytes));
     if (!coherent_)
         device_->flushMappedMemoryRanges(vk::MappedMemoryRange(*memory_, 0, VK_WHOLE_SIZE));

@@ -32,15 +32,21 @@ struct Context::Impl {
 // to do; any other Vulkan failure is explained in general terms.
 [[noreturn]] void explainVulkanFailure(const vk::SystemError& failure, const DeviceInfo& device);
 
-// A buffer and its memory, host-visible and mapped for its whole life.
-// Member order fixes destruction order: the buffer goes before its memory.
+// Where a buffer's memory lies: host-visible, mapped for the buffer's whole
+// life; or device-local, never mapped, filled by a copy from a host-visible
+// one (a discrete GPU then reads it from its own memory, not over the bus).
+enum class BufferMemory { HostVisible, DeviceLocal };
+
+// A buffer and its memory. Member order fixes destruction order: the buffer
+// goes before its memory.
 class HostBuffer {
 public:
-    HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUsageFlags usage);
+    HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUsageFlags usage,
+               BufferMemory memory = BufferMemory::HostVisible);
     vk::Buffer buffer() const { return *buffer_; }
     vk::DeviceSize size() const { return size_; }
-    void* data() const { return mapped_; }
-    void upload(const void* source, vk::DeviceSize bytes);
+    void* data() const { return mapped_; }                  // nullptr when device-local
+    void upload(const void* source, vk::DeviceSize bytes);  // host-visible only
     // Makes device writes visible to the host on non-coherent memory.
     void invalidate();
 

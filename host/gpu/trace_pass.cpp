@@ -36,15 +36,15 @@ BindingUse useOf(BindingKind kind) {
     throw Error("internal: a binding of no known kind");
 }
 
-template <typename T>
-std::unique_ptr<HostBuffer> makeBuffer(Context::Impl& c, const std::vector<T>& items,
-                                       vk::BufferUsageFlags usage) {
-    // Vulkan forbids empty buffers: an empty array still gets one element.
-    // (Sizes were checked against the device's limits by checkBufferNeeds.)
-    const vk::DeviceSize bytes = sizeof(T) * std::max<size_t>(items.size(), 1);
-    auto buffer = std::make_unique<HostBuffer>(c, bytes, usage);
-    if (!items.empty()) buffer->upload(items.data(), sizeof(T) * items.size());
-    return buffer;
+// What only the shader reads or writes lies in device-local memory: the
+// scene's arrays, fp64's camera, each ray's progress and pending rays. What
+// the host writes or reads during a render (the frame's parameters, the
+// pixels, the status, the debug and stress records) stays host-visible.
+BufferMemory memoryOf(uint binding, BindingKind kind) {
+    const bool texels = kind == BindingKind::Texels || kind == BindingKind::UintTexels;
+    return (texels && binding != BINDING_PIXELS) || binding == BINDING_DOUBLE_CAMERA
+               ? BufferMemory::DeviceLocal
+               : BufferMemory::HostVisible;
 }
 
 // Every buffer TracePass allocates for this variant, before it allocates any.
@@ -110,10 +110,44 @@ vk::DescriptorType descriptorTypeOf(BindingKind kind) {
 
 template <typename T>
 void TracePass::add(uint binding, const std::vector<T>& items) {
-    vk::BufferUsageFlags usage = useOf(kindOf(binding)).usage;
+    // Vulkan forbids empty buffers: an empty array still gets one element.
+    // (Sizes were checked against the device's limits by checkBufferNeeds.)
+    const vk::DeviceSize bytes = sizeof(T) * std::max<size_t>(items.size(), 1);
+    const BindingKind kind = kindOf(binding);
+    vk::BufferUsageFlags usage = useOf(kind).usage;
     // `vkray view`'s presenter reads the tile's pixels as a storage buffer.
     if (binding == BINDING_PIXELS) usage |= vk::BufferUsageFlagBits::eStorageBuffer;
-    buffers_.emplace(binding, makeBuffer(c_, items, usage));
+    if (memoryOf(binding, kind) == BufferMemory::HostVisible) {
+        auto buffer = std::make_unique<HostBuffer>(c_, bytes, usage);
+        if (!items.empty()) buffer->upload(items.data(), sizeof(T) * items.size());
+        buffers_.emplace(binding, std::move(buffer));
+        return;
+    }
+    auto buffer = std::make_unique<HostBuffer>(
+        c_, bytes, usage | vk::BufferUsageFlagBits::eTransferDst, BufferMemory::DeviceLocal);
+    if (!items.empty()) {
+        auto staging =
+            std::make_unique<HostBuffer>(c_, bytes, vk::BufferUsageFlagBits::eTransferSrc);
+        staging->upload(items.data(), sizeof(T) * items.size());
+        staged_.push_back({std::move(staging), buffer->buffer(), sizeof(T) * items.size()});
+    }
+    buffers_.emplace(binding, std::move(buffer));
+}
+
+void TracePass::copyStaged() {
+    if (staged_.empty()) return;
+    commands_.reset();
+    commands_.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    for (const Staged& s : staged_)
+        commands_.copyBuffer(s.from->buffer(), s.to, vk::BufferCopy(0, 0, s.bytes));
+    // The copies must land before the first dispatch reads them.
+    vk::MemoryBarrier copied(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eShaderRead);
+    commands_.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer,
+                              vk::PipelineStageFlagBits::eComputeShader, {}, copied, nullptr,
+                              nullptr);
+    commands_.end();
+    submitAndWait(c_, vk::SubmitInfo({}, {}, *commands_), fence_, "the scene's upload");
+    staged_.clear();
 }
 
 BindingKind TracePass::kindOf(uint binding) const {
@@ -124,8 +158,9 @@ BindingKind TracePass::kindOf(uint binding) const {
 }
 
 void TracePass::allocate(uint binding, size_t bytes) {
-    buffers_.emplace(binding,
-                     std::make_unique<HostBuffer>(c_, bytes, useOf(kindOf(binding)).usage));
+    const BindingKind kind = kindOf(binding);
+    buffers_.emplace(binding, std::make_unique<HostBuffer>(c_, bytes, useOf(kind).usage,
+                                                           memoryOf(binding, kind)));
 }
 
 TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
@@ -145,6 +180,8 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
                                  pendingRays, debugEntries),
                      deviceLimits(c.info));
     const std::vector<FrameParams> frameParams{packFrame(scene, packed, camera, settings)};
+    commands_ = makeCommandBuffer(c);
+    fence_ = vk::raii::Fence(c.device, vk::FenceCreateInfo{});
     // Only the buffers this variant reads (the same list as its bindings).
     const std::vector<ShaderBinding> bindings = bindingsFor(features);
     for (const ShaderBinding& b : bindings) kinds_[b.binding] = b.kind;
@@ -186,6 +223,7 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
     // Exactly the variant's bindings (bindingsFor): no buffer uploaded for nothing.
     if (bindings.size() != buffers_.size())
         throw Error("internal: the buffers uploaded differ from the variant's bindings");
+    copyStaged();
 
     descriptors_.emplace(c, pipeline.compute);
     const vk::DescriptorSet set = *descriptors_->set;
@@ -205,9 +243,6 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
         }
     }
     c.device.updateDescriptorSets(writes, nullptr);
-
-    commands_ = makeCommandBuffer(c);
-    fence_ = vk::raii::Fence(c.device, vk::FenceCreateInfo{});
 }
 
 void TracePass::traceTile(int tx, int ty, int w, int h, int block, uint& turnBudget,

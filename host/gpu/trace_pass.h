@@ -89,6 +89,8 @@ private:
     BindingKind kindOf(uint binding) const;
     // The same, `bytes` left as they are: the shader writes before it reads.
     void allocate(uint binding, size_t bytes);
+    // Copies what add() staged into the device-local buffers, and waits.
+    void copyStaged();
     HostBuffer& buffer(uint binding) const { return *buffers_.at(binding); }
 
     Context::Impl& c_;
@@ -96,7 +98,13 @@ private:
     std::map<uint, BindingKind> kinds_;                    // the variant's bindings
     uint firstSample_, endSample_;                         // the samples each ray traces
     std::map<uint, std::unique_ptr<HostBuffer>> buffers_;  // by binding
-    std::vector<vk::raii::BufferView> views_;              // of the texel buffers
+    struct Staged {
+        std::unique_ptr<HostBuffer> from;  // host-visible
+        vk::Buffer to;                     // device-local
+        vk::DeviceSize bytes;
+    };
+    std::vector<Staged> staged_;               // until copyStaged()
+    std::vector<vk::raii::BufferView> views_;  // of the texel buffers
     std::optional<DescriptorSet> descriptors_;
     vk::raii::CommandBuffer commands_ = nullptr;
     vk::raii::Fence fence_ = nullptr;
