@@ -38,6 +38,17 @@ std::size_t primaryRays(const RenderSettings& s) {
            std::size_t((s.height + s.block - 1) / s.block) * std::size_t(s.spp);
 }
 
+// The dispatches' own time, from the device's timestamps, and its share of
+// the render's wall clock (the rest: submits, waits, read-back).
+std::string deviceTime(const gpu::GpuRenderStats& stats) {
+    if (!stats.deviceSeconds) return "not measured (the device's queue has no timestamps)";
+    std::string text = fixedDigits(*stats.deviceSeconds, 3) + " s (timestamp queries";
+    if (stats.renderSeconds > 0)
+        text += ", " + fixedDigits(100 * *stats.deviceSeconds / stats.renderSeconds, 0) +
+                " % of the render's wall clock";
+    return text + ")";
+}
+
 // The progress display's callback; it also stops the render on Ctrl-C.
 RenderProgress progressTo(ProgressDisplay& display) {
     const bool paced = gpu::injectedFault() == gpu::Fault::SlowProgress;
@@ -63,6 +74,7 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
             << (stats.tiles == 1 ? " tile" : " tiles") << " in " << stats.dispatches
             << (stats.dispatches == 1 ? " dispatch, " : " dispatches, ")
             << fixedDigits(mrays(stats.rays, stats.renderSeconds), 2) << " Mrays/s\n";
+        out << "gpu render: device time " << deviceTime(stats) << "\n";
         if (stats.tilesRedone > 0)
             out << "gpu render: " << stats.tilesRedone
                 << (stats.tilesRedone == 1 ? " tile was" : " tiles were")

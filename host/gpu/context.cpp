@@ -80,6 +80,11 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& device, int index) {
         info.maxWorkgroupCount[i] = props.limits.maxComputeWorkGroupCount[i];
         info.maxWorkgroupSize[i] = props.limits.maxComputeWorkGroupSize[i];
     }
+    if (const auto family = computeQueueFamily(device);
+        family && injectedFault() != Fault::NoTimestamps) {
+        info.timestampValidBits = device.getQueueFamilyProperties()[*family].timestampValidBits;
+        info.timestampPeriodNs = double(props.limits.timestampPeriod);
+    }
     return info;
 }
 
@@ -153,11 +158,13 @@ Fault injectedFault() {
     if (fault == "device-lost") return Fault::DeviceLost;
     if (fault == "out-of-device-memory") return Fault::OutOfDeviceMemory;
     if (fault == "no-float64") return Fault::NoFloat64;
+    if (fault == "no-timestamps") return Fault::NoTimestamps;
     if (fault == "slow-progress") return Fault::SlowProgress;
     if (fault == "no-offset") return Fault::NoOffset;
     throw Error("VKRAY_FAULT='" + fault +
                 "' is not a fault vkray can inject (no-compute, device-lost, "
-                "out-of-device-memory, no-float64, slow-progress, no-offset); it is a test hook: "
+                "out-of-device-memory, no-float64, no-timestamps, slow-progress, "
+                "no-offset); it is a test hook: "
                 "unset it");
 }
 

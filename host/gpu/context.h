@@ -29,6 +29,10 @@ struct DeviceInfo {
     std::uint64_t memoryHeapBytes = 0;          // the heap of the first host-visible memory type
     std::uint32_t maxWorkgroupCount[3] = {};
     std::uint32_t maxWorkgroupSize[3] = {};
+    // Timestamp queries on the compute queue (the GPU's own time of a
+    // dispatch): the valid bits of a timestamp (0: none) and ns per tick.
+    std::uint32_t timestampValidBits = 0;
+    double timestampPeriodNs = 0;
     std::string apiVersionString() const;
 };
 
@@ -68,7 +72,7 @@ private:
 // fail as a real device can but a test cannot cause: `no-compute` (every
 // device lacks a compute queue), `device-lost` (after the first tile),
 // `out-of-device-memory` (at the first buffer allocation), `no-float64` (no
-// device has shaderFloat64); or `slow-progress`: every progress report of a
+// device has shaderFloat64), `no-timestamps` (no queue has timestamps); or `slow-progress`: every progress report of a
 // render waits 25 ms, so that tests of progress lines and interruption do
 // not depend on the machine's speed; or `no-offset`: the shader's secondary
 // rays start on the surface they leave (VKRAY_FAULT_NO_OFFSET = 1), so that
@@ -80,6 +84,7 @@ enum class Fault {
     DeviceLost,
     OutOfDeviceMemory,
     NoFloat64,
+    NoTimestamps,
     SlowProgress,
     NoOffset
 };

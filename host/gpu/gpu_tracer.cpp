@@ -189,6 +189,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     st.dispatches = 0;
     st.tilesRedone = 0;
     st.rays = 0;
+    st.deviceSeconds.reset();  // the dispatches add theirs, where the queue has timestamps
     const size_t totalRays = size_t((settings.width + block - 1) / block) *
                              size_t((settings.height + block - 1) / block) * size_t(samples);
     if (progress && !progress(0, totalRays)) throw Interrupted();

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,6 +49,10 @@ struct GpuRenderStats {
     double renderCpuSeconds =
         0;                    // CPU time of the process (all threads: lavapipe's too) in that loop
     double setupSeconds = 0;  // buffers, pipeline (shader compile excluded)
+    // The dispatches' own time on the device, from timestamp queries written
+    // before and after each: what the wall clock holds less the host's part
+    // (submits, waits, read-back). Empty where the queue has no timestamps.
+    std::optional<double> deviceSeconds;
     CompiledShader shader;    // SPIR-V, key, cache hit, compile/load time
     std::string variant;      // describe(features), e.g. "sphere+cube"
     std::size_t tiles = 0;

@@ -182,6 +182,9 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
     const std::vector<FrameParams> frameParams{packFrame(scene, packed, camera, settings)};
     commands_ = makeCommandBuffer(c);
     fence_ = vk::raii::Fence(c.device, vk::FenceCreateInfo{});
+    if (c.info.timestampValidBits > 0 && c.info.timestampPeriodNs > 0)
+        timestamps_ = vk::raii::QueryPool(
+            c.device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, 2));
     // Only the buffers this variant reads (the same list as its bindings).
     const std::vector<ShaderBinding> bindings = bindingsFor(features);
     for (const ShaderBinding& b : bindings) kinds_[b.binding] = b.kind;
@@ -251,7 +254,7 @@ void TracePass::traceTile(int tx, int ty, int w, int h, int block, uint& turnBud
         GpuDispatchStatus status{};
         bool first = true;
         do {
-            status = dispatch(tx, ty, w, h, block, turnBudget, first);
+            status = dispatch(tx, ty, w, h, block, turnBudget, first, stats.deviceSeconds);
             ++stats.dispatches;
             first = false;
         } while (status.counts.y == 0 && status.counts.x > 0);
@@ -270,7 +273,7 @@ void TracePass::traceTile(int tx, int ty, int w, int h, int block, uint& turnBud
 }
 
 GpuDispatchStatus TracePass::dispatch(int tx, int ty, int w, int h, int block, uint turnBudget,
-                                      bool first) {
+                                      bool first, std::optional<double>& deviceSeconds) {
     const uint raysX = uint((w + block - 1) / block), raysY = uint((h + block - 1) / block);
     const TileParams tileParams{{uint(tx), uint(ty), uint(w), uint(h)},
                                 {turnBudget, first ? 1u : 0u, kCanaryTurns, raysX},
@@ -284,8 +287,14 @@ GpuDispatchStatus TracePass::dispatch(int tx, int ty, int w, int h, int block, u
                                  *descriptors_->set, nullptr);
     commands_.pushConstants<TileParams>(*pipeline_.compute.layout,
                                         vk::ShaderStageFlagBits::eCompute, 0, tileParams);
+    if (timesDispatches()) {
+        commands_.resetQueryPool(*timestamps_, 0, 2);
+        commands_.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *timestamps_, 0);
+    }
     const uint groupX = pipeline_.workgroupX, groupY = pipeline_.workgroupY;
     commands_.dispatch((raysX + groupX - 1) / groupX, (raysY + groupY - 1) / groupY, 1);
+    if (timesDispatches())
+        commands_.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *timestamps_, 1);
     // Shader writes must be visible to the host before the read-back.
     vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
     commands_.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
@@ -294,6 +303,17 @@ GpuDispatchStatus TracePass::dispatch(int tx, int ty, int w, int h, int block, u
     submitAndWait(c_, vk::SubmitInfo({}, {}, *commands_), fence_, "a tile");
     if (injectedFault() == Fault::DeviceLost)  // after the wait: nothing still runs
         throw vk::DeviceLostError("vkWaitForFences (injected by VKRAY_FAULT)");
+    if (timesDispatches()) {
+        // Both were written before the fence signalled: no wait.
+        const auto [result, ticks] = timestamps_.getResults<std::uint64_t>(
+            0, 2, 2 * sizeof(std::uint64_t), sizeof(std::uint64_t), vk::QueryResultFlagBits::e64);
+        if (result != vk::Result::eSuccess)
+            throw Error("the device's timestamps of a tile were not ready after its fence");
+        const unsigned bits = c_.info.timestampValidBits;
+        const std::uint64_t mask = bits >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << bits) - 1;
+        const std::uint64_t elapsed = ((ticks[1] & mask) - (ticks[0] & mask)) & mask;
+        deviceSeconds = deviceSeconds.value_or(0.0) + double(elapsed) * c_.info.timestampPeriodNs * 1e-9;
+    }
     buffer(BINDING_PIXELS).invalidate();
     buffer(BINDING_STATUS).invalidate();
     if (buffers_.count(BINDING_DEBUG)) buffer(BINDING_DEBUG).invalidate();

@@ -58,9 +58,13 @@ public:
     void traceTile(int tx, int ty, int w, int h, int block, uint& turnBudget,
                    GpuRenderStats& stats);
 
-    // One dispatch over the tile; `first`: its rays start afresh.
+    // One dispatch over the tile; `first`: its rays start afresh. With
+    // timestamps, its time on the device is added to *deviceSeconds.
     GpuDispatchStatus dispatch(int tx, int ty, int w, int h, int block, uint turnBudget,
-                               bool first);
+                               bool first, std::optional<double>& deviceSeconds);
+
+    // The device's queue writes timestamps (DeviceInfo::timestampValidBits).
+    bool timesDispatches() const { return bool(*timestamps_); }
 
     const GpuPixel* pixels() const {
         return static_cast<const GpuPixel*>(buffer(BINDING_PIXELS).data());
@@ -108,6 +112,7 @@ private:
     std::optional<DescriptorSet> descriptors_;
     vk::raii::CommandBuffer commands_ = nullptr;
     vk::raii::Fence fence_ = nullptr;
+    vk::raii::QueryPool timestamps_ = nullptr;  // before and after the dispatch, if the queue can
 };
 
 }  // namespace vkray::gpu

@@ -182,6 +182,20 @@ TEST_F(Reliability, NoDeviceWithComputeSaysWhatToInstall) {
     EXPECT_NE(chosen.output.find("has no compute queue"), std::string::npos) << chosen.output;
 }
 
+TEST_F(Reliability, RenderReportsTheDeviceTimeOrThatItWasNotMeasured) {
+    RunResult timed = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png"));
+    EXPECT_EQ(timed.status, 0) << timed.output;
+    EXPECT_NE(timed.output.find("gpu render: device time "), std::string::npos) << timed.output;
+    EXPECT_NE(timed.output.find(" s (timestamp queries, "), std::string::npos) << timed.output;
+    RunResult untimed = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png"),
+                              "VKRAY_FAULT=no-timestamps");
+    EXPECT_EQ(untimed.status, 0) << untimed.output;
+    EXPECT_NE(untimed.output.find("gpu render: device time not measured (the device's queue has "
+                                  "no timestamps)"),
+              std::string::npos)
+        << untimed.output;
+}
+
 TEST_F(Reliability, DeviceLostDuringTheRenderSuggestsCpuAndWritesNothing) {
     std::ofstream(dir / "out.png") << "the previous image";
     RunResult run = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png") +

@@ -137,6 +137,26 @@ TEST(GpuTracer, TilesStitchIntoTheSameImage) {
     EXPECT_EQ(a.id, b.id);
 }
 
+TEST(GpuTracer, DeviceTimeOfTheDispatchesLiesWithinTheRender) {
+    // Each dispatch's timestamps are written on the device between its
+    // submit and the fence the host waits on, so their sum lies within the
+    // wall clock around all of them; it is there exactly when the queue has
+    // timestamps (lavapipe's has).
+    Scene scene = parseSdl("push translate 0.3 0 0 sphere pop cube", "timed.sdl", {});
+    Camera camera;
+    camera.eye = {3, 4, 5};
+    gpu::GpuTracer tracer(test::gpuContext(),
+                          {.shaderDirectory = test::kShaderDir, .tileSize = 16});
+    gpu::GpuRenderStats stats;
+    tracer.render(scene, makeCameraBasis(camera, 50, 40), {50, 40, 1}, &stats);
+    ASSERT_EQ(stats.deviceSeconds.has_value(),
+              test::gpuContext().device().timestampValidBits > 0);
+    if (!stats.deviceSeconds) GTEST_SKIP() << "the device's queue has no timestamps";
+    EXPECT_EQ(stats.dispatches, 12u);
+    EXPECT_GT(*stats.deviceSeconds, 0.0);
+    EXPECT_LE(*stats.deviceSeconds, stats.renderSeconds);
+}
+
 TEST(GpuTracer, SamplesTracedOneAtATimeSumToTheWholeRender) {
     // `vkray view` traces the spp samples one a pass and sums them in order,
     // as the shader sums them within one dispatch: the mean is the very same
