@@ -177,8 +177,12 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     const int tile =
         fitTileSide(std::max(block, side / block * block), block, pixelBytes, pipeline.workgroupX,
                     pipeline.workgroupY, deviceLimits(context_.device()));
+    // One process tracing every tile keeps two in flight: the device traces
+    // the next while the host reads this one back. A schedule of another
+    // process (MPI) hands out one tile at a time.
+    const bool overlap = schedule == nullptr;
     TracePass pass(context_.impl(), pipeline, features, features.doubles, scene, camera, settings,
-                   tile);
+                   tile, overlap ? 2 : 1);
     st.setupSeconds = setup.seconds() - st.shader.seconds;
 
     Frame frame(settings.width, settings.height);
@@ -194,40 +198,58 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
                              size_t((settings.height + block - 1) / block) * size_t(samples);
     if (progress && !progress(0, totalRays)) throw Interrupted();
     uint turnBudget = options_.turnBudget > 0 ? uint(options_.turnBudget) : kTurnBudget;
-    AllTilesInRows everyTile(options_.serpentineTiles);
-    TileSchedule& tiles = schedule ? *schedule : everyTile;
-    tiles.plan(settings.width, settings.height, tile);
-    while (const std::optional<TileRect> given = tiles.next()) {
-        // A tile handed out by another process may be larger than this
-        // device's: it is traced in pieces of this device's tile side.
-        for (const TileRect& piece : tilesOf(given->width, given->height, tile)) {
-            const int tx = given->x + piece.x, ty = given->y + piece.y;
-            const int w = piece.width, h = piece.height;
-            pass.traceTile(tx, ty, w, h, block, turnBudget, st);
-            if (tileListener_) tileListener_(TracedTile{{tx, ty, w, h}, pass.pixelBuffer()});
-            const GpuPixel* pixels = pass.pixels();
-            const bool aovs = settings.firstSample == 0;  // sample 0 traced
-            for (int y = 0; y < h; ++y) {
-                for (int x = 0; x < w; ++x) {
-                    const GpuPixel& p = pixels[size_t(y) * size_t(w) + size_t(x)];
-                    const size_t i = frame.index(tx + x, ty + y);
-                    frame.color[i] = {p.color.x, p.color.y, p.color.z};
-                    if (!aovs) continue;
-                    frame.depth[i] = p.color.w;
-                    frame.normal[i] = {p.normal.x, p.normal.y, p.normal.z};
-                    std::memcpy(&frame.id[i], &p.normal.w, sizeof(std::int32_t));
-                    if (stressSamples)
-                        (*stressSamples)[i] = decodeStressSample(
-                            pass.stressSamples()[size_t(y) * size_t(w) + size_t(x)],
-                            features.doubles);
-                }
+    // The finished tile of `slot` into the frame, and to the listener.
+    const auto readBack = [&](int slot, const TileRect& piece) {
+        const int tx = piece.x, ty = piece.y, w = piece.width, h = piece.height;
+        if (tileListener_) tileListener_(TracedTile{piece, pass.pixelBuffer(slot)});
+        const GpuPixel* pixels = pass.pixels(slot);
+        const bool aovs = settings.firstSample == 0;  // sample 0 traced
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const GpuPixel& p = pixels[size_t(y) * size_t(w) + size_t(x)];
+                const size_t i = frame.index(tx + x, ty + y);
+                frame.color[i] = {p.color.x, p.color.y, p.color.z};
+                if (!aovs) continue;
+                frame.depth[i] = p.color.w;
+                frame.normal[i] = {p.normal.x, p.normal.y, p.normal.z};
+                std::memcpy(&frame.id[i], &p.normal.w, sizeof(std::int32_t));
+                if (stressSamples)
+                    (*stressSamples)[i] = decodeStressSample(
+                        pass.stressSamples(slot)[size_t(y) * size_t(w) + size_t(x)],
+                        features.doubles);
             }
-            st.rays +=
-                size_t((w + block - 1) / block) * size_t((h + block - 1) / block) * size_t(samples);
-            ++st.tiles;
-            if (progress && !progress(st.rays, totalRays)) throw Interrupted();
         }
-        tiles.finished(*given, frame);
+        st.rays +=
+            size_t((w + block - 1) / block) * size_t((h + block - 1) / block) * size_t(samples);
+        ++st.tiles;
+        if (progress && !progress(st.rays, totalRays)) throw Interrupted();
+    };
+    if (overlap) {
+        const std::vector<TileRect> pieces =
+            tilesOf(settings.width, settings.height, tile, options_.serpentineTiles);
+        const auto start = [&](size_t i) {
+            const TileRect& p = pieces[i];
+            pass.start(int(i % 2), p.x, p.y, p.width, p.height, block, turnBudget);
+        };
+        for (size_t i = 0; i < std::min<size_t>(2, pieces.size()); ++i) start(i);
+        for (size_t i = 0; i < pieces.size(); ++i) {
+            pass.finish(int(i % 2), turnBudget, st);
+            readBack(int(i % 2), pieces[i]);
+            if (i + 2 < pieces.size()) start(i + 2);  // into the slot just read back
+        }
+    } else {
+        schedule->plan(settings.width, settings.height, tile);
+        while (const std::optional<TileRect> given = schedule->next()) {
+            // A tile handed out by another process may be larger than this
+            // device's: it is traced in pieces of this device's tile side.
+            for (const TileRect& piece : tilesOf(given->width, given->height, tile)) {
+                const TileRect at{given->x + piece.x, given->y + piece.y, piece.width,
+                                  piece.height};
+                pass.traceTile(at.x, at.y, at.width, at.height, block, turnBudget, st);
+                readBack(0, at);
+            }
+            schedule->finished(*given, frame);
+        }
     }
     st.renderSeconds = rendering.seconds();
     st.renderCpuSeconds = processCpuSeconds() - renderCpuStart;

@@ -100,8 +100,9 @@ public:
     // Error naming the count, the limit and what to do), then traces it tile
     // by tile; `progress` hears after each tile and can stop the render
     // (Interrupted). A device lost or out of memory is an Error saying so.
-    // `schedule` chooses the tiles (default: all of them, in rows); the
-    // frame's other pixels are left as Frame() made them.
+    // `schedule` chooses the tiles, one at a time, and the frame's other
+    // pixels are left as Frame() made them; without one, every tile is
+    // traced in rows, the next submitted before the host waits for this one.
     Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
                  GpuRenderStats* stats = nullptr, const RenderProgress& progress = nullptr,
                  TileSchedule* schedule = nullptr);

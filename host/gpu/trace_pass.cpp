@@ -50,7 +50,7 @@ BufferMemory memoryOf(uint binding, BindingKind kind) {
 // Every buffer TracePass allocates for this variant, before it allocates any.
 std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures& features,
                                     bool doubles, size_t tilePixels, size_t tileRays,
-                                    size_t pendingRays, size_t debugEntries) {
+                                    size_t pendingRays, size_t debugEntries, size_t slots) {
     std::map<uint, BindingKind> kinds;
     for (const ShaderBinding& b : bindingsFor(features)) kinds[b.binding] = b.kind;
     // A scene array: a texel buffer, its texels those of its binding's kind.
@@ -64,20 +64,26 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
         {"frame parameters", 1, sizeof(FrameParams), true, "Use another --device"},
         need(BINDING_OBJECTS, "objects", packed.objects, fewerObjects),
         need(BINDING_MATERIALS, "materials", packed.materials, fewerObjects),
-        {"tile pixels", tilePixels, sizeof(GpuPixel), false, "Use a smaller --block",
-         sizeof(uvec4)},
-        {"ray progress", tileRays, sizeof(GpuRayProgress), false, "Use a smaller --block",
-         sizeof(uvec4)},
     };
+    // Each tile in flight has its own.
+    for (size_t slot = 0; slot < slots; ++slot) {
+        needs.push_back({"tile pixels", tilePixels, sizeof(GpuPixel), false,
+                         "Use a smaller --block", sizeof(uvec4)});
+        needs.push_back({"ray progress", tileRays, sizeof(GpuRayProgress), false,
+                         "Use a smaller --block", sizeof(uvec4)});
+        if (pendingRays > 0)
+            needs.push_back({"pending rays", pendingRays,
+                             doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask), false,
+                             "Use a smaller maxRecursionDepth", sizeof(uvec4)});
+        if (features.debugPixel)
+            needs.push_back(
+                {"debug entries", debugEntries, sizeof(GpuDebugEntry), false, fewerObjects});
+        if (features.stressOutput)
+            needs.push_back({"stress output", tilePixels, sizeof(GpuStressSample), false,
+                             "Use a smaller image"});
+    }
     if (kinds.count(BINDING_LIGHTS))
         needs.push_back(need(BINDING_LIGHTS, "lights", packed.lights, "Use fewer lights"));
-    if (pendingRays > 0)
-        needs.push_back({"pending rays", pendingRays,
-                         doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask), false,
-                         "Use a smaller maxRecursionDepth", sizeof(uvec4)});
-    if (features.debugPixel)
-        needs.push_back(
-            {"debug entries", debugEntries, sizeof(GpuDebugEntry), false, fewerObjects});
     if (features.objectBvh) {
         needs.push_back(
             need(BINDING_OBJECT_NODES, "object BVH nodes", packed.objectNodes, fewerObjects));
@@ -96,9 +102,6 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     if (doubles)
         needs.push_back(
             need(BINDING_DOUBLE_OBJECTS, "double transforms", packed.doubleObjects, fewerObjects));
-    if (features.stressOutput)
-        needs.push_back(
-            {"stress output", tilePixels, sizeof(GpuStressSample), false, "Use a smaller image"});
     return needs;
 }
 
@@ -108,8 +111,15 @@ vk::DescriptorType descriptorTypeOf(BindingKind kind) {
     return useOf(kind).descriptor;
 }
 
+// The bindings the shader writes: each tile in flight has its own.
+bool perTile(uint binding) {
+    return binding == BINDING_PIXELS || binding == BINDING_PROGRESS || binding == BINDING_STATUS ||
+           binding == BINDING_RAY_STACK || binding == BINDING_DEBUG ||
+           binding == BINDING_STRESS_OUTPUT;
+}
+
 template <typename T>
-void TracePass::add(uint binding, const std::vector<T>& items) {
+void TracePass::add(uint binding, const std::vector<T>& items, int slot) {
     // Vulkan forbids empty buffers: an empty array still gets one element.
     // (Sizes were checked against the device's limits by checkBufferNeeds.)
     const vk::DeviceSize bytes = sizeof(T) * std::max<size_t>(items.size(), 1);
@@ -117,10 +127,11 @@ void TracePass::add(uint binding, const std::vector<T>& items) {
     vk::BufferUsageFlags usage = useOf(kind).usage;
     // `vkray view`'s presenter reads the tile's pixels as a storage buffer.
     if (binding == BINDING_PIXELS) usage |= vk::BufferUsageFlagBits::eStorageBuffer;
+    Buffers& into = slot < 0 ? buffers_ : slots_[size_t(slot)].buffers;
     if (memoryOf(binding, kind) == BufferMemory::HostVisible) {
         auto buffer = std::make_unique<HostBuffer>(c_, bytes, usage);
         if (!items.empty()) buffer->upload(items.data(), sizeof(T) * items.size());
-        buffers_.emplace(binding, std::move(buffer));
+        into.emplace(binding, std::move(buffer));
         return;
     }
     auto buffer = std::make_unique<HostBuffer>(
@@ -131,22 +142,23 @@ void TracePass::add(uint binding, const std::vector<T>& items) {
         staging->upload(items.data(), sizeof(T) * items.size());
         staged_.push_back({std::move(staging), buffer->buffer(), sizeof(T) * items.size()});
     }
-    buffers_.emplace(binding, std::move(buffer));
+    into.emplace(binding, std::move(buffer));
 }
 
 void TracePass::copyStaged() {
     if (staged_.empty()) return;
-    commands_.reset();
-    commands_.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    const vk::raii::CommandBuffer& commands = slots_[0].commands;
+    commands.reset();
+    commands.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     for (const Staged& s : staged_)
-        commands_.copyBuffer(s.from->buffer(), s.to, vk::BufferCopy(0, 0, s.bytes));
+        commands.copyBuffer(s.from->buffer(), s.to, vk::BufferCopy(0, 0, s.bytes));
     // The copies must land before the first dispatch reads them.
     vk::MemoryBarrier copied(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eShaderRead);
-    commands_.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer,
-                              vk::PipelineStageFlagBits::eComputeShader, {}, copied, nullptr,
-                              nullptr);
-    commands_.end();
-    submitAndWait(c_, vk::SubmitInfo({}, {}, *commands_), fence_, "the scene's upload");
+    commands.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer,
+                             vk::PipelineStageFlagBits::eComputeShader, {}, copied, nullptr,
+                             nullptr);
+    commands.end();
+    submitAndWait(c_, vk::SubmitInfo({}, {}, *commands), slots_[0].fence, "the scene's upload");
     staged_.clear();
 }
 
@@ -157,19 +169,24 @@ BindingKind TracePass::kindOf(uint binding) const {
     return found->second;
 }
 
-void TracePass::allocate(uint binding, size_t bytes) {
+HostBuffer& TracePass::buffer(uint binding, int slot) const {
+    return perTile(binding) ? *slots_.at(size_t(slot)).buffers.at(binding) : *buffers_.at(binding);
+}
+
+void TracePass::allocate(uint binding, size_t bytes, int slot) {
     const BindingKind kind = kindOf(binding);
-    buffers_.emplace(binding, std::make_unique<HostBuffer>(c_, bytes, useOf(kind).usage,
-                                                           memoryOf(binding, kind)));
+    slots_[size_t(slot)].buffers.emplace(
+        binding, std::make_unique<HostBuffer>(c_, bytes, useOf(kind).usage, memoryOf(binding, kind)));
 }
 
 TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
                      bool doubles, const Scene& scene, const CameraBasis& camera,
-                     const RenderSettings& settings, int tile)
+                     const RenderSettings& settings, int tile, int slots)
     : c_(c),
       pipeline_(pipeline),
       firstSample_(uint(settings.firstSample)),
-      endSample_(uint(sampleEnd(settings))) {
+      endSample_(uint(sampleEnd(settings))),
+      slots_(size_t(std::max(slots, 1))) {
     const GpuScene packed = packScene(scene, features);
     const size_t debugEntries = 4 + scene.objects.size() + scene.lights.size();
     const size_t raysPerSide = size_t((tile + settings.block - 1) / settings.block);
@@ -177,14 +194,16 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
     const bool rayStack = features.has(Shading::Reflection) || features.has(Shading::Refraction);
     const size_t pendingRays = rayStack ? tileRays * size_t(pendingRayEntries(scene)) : 0;
     checkBufferNeeds(bufferNeeds(packed, features, doubles, size_t(tile) * size_t(tile), tileRays,
-                                 pendingRays, debugEntries),
+                                 pendingRays, debugEntries, slots_.size()),
                      deviceLimits(c.info));
     const std::vector<FrameParams> frameParams{packFrame(scene, packed, camera, settings)};
-    commands_ = makeCommandBuffer(c);
-    fence_ = vk::raii::Fence(c.device, vk::FenceCreateInfo{});
-    if (c.info.timestampValidBits > 0 && c.info.timestampPeriodNs > 0)
-        timestamps_ = vk::raii::QueryPool(
-            c.device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, 2));
+    for (Slot& slot : slots_) {
+        slot.commands = makeCommandBuffer(c);
+        slot.fence = vk::raii::Fence(c.device, vk::FenceCreateInfo{});
+        if (c.info.timestampValidBits > 0 && c.info.timestampPeriodNs > 0)
+            slot.timestamps = vk::raii::QueryPool(
+                c.device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, 2));
+    }
     // Only the buffers this variant reads (the same list as its bindings).
     const std::vector<ShaderBinding> bindings = bindingsFor(features);
     for (const ShaderBinding& b : bindings) kinds_[b.binding] = b.kind;
@@ -192,16 +211,21 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
     add(BINDING_OBJECTS, packed.objects);
     add(BINDING_MATERIALS, packed.materials);
     if (kinds_.count(BINDING_LIGHTS)) add(BINDING_LIGHTS, packed.lights);
-    add(BINDING_PIXELS, std::vector<GpuPixel>(size_t(tile) * size_t(tile)));
-    allocate(BINDING_PROGRESS, sizeof(GpuRayProgress) * tileRays);
-    add(BINDING_STATUS, std::vector<GpuDispatchStatus>(1));
-    if (rayStack)
-        allocate(BINDING_RAY_STACK,
-                 pendingRays * (doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask)));
-    if (features.debugPixel) {
-        // A header and one entry per object and per light, zeroed.
-        static_assert(sizeof(GpuDebugHeader) == 4 * sizeof(GpuDebugEntry));
-        add(BINDING_DEBUG, std::vector<GpuDebugEntry>(debugEntries));
+    for (int s = 0; s < int(slots_.size()); ++s) {
+        add(BINDING_PIXELS, std::vector<GpuPixel>(size_t(tile) * size_t(tile)), s);
+        allocate(BINDING_PROGRESS, sizeof(GpuRayProgress) * tileRays, s);
+        add(BINDING_STATUS, std::vector<GpuDispatchStatus>(1), s);
+        if (rayStack)
+            allocate(BINDING_RAY_STACK,
+                     pendingRays * (doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask)), s);
+        if (features.debugPixel) {
+            // A header and one entry per object and per light, zeroed.
+            static_assert(sizeof(GpuDebugHeader) == 4 * sizeof(GpuDebugEntry));
+            add(BINDING_DEBUG, std::vector<GpuDebugEntry>(debugEntries), s);
+        }
+        if (features.stressOutput)
+            add(BINDING_STRESS_OUTPUT, std::vector<GpuStressSample>(size_t(tile) * size_t(tile)),
+                s);
     }
     if (features.objectBvh) {
         add(BINDING_OBJECT_NODES, packed.objectNodes);
@@ -221,104 +245,149 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
         add(BINDING_DOUBLE_CAMERA, std::vector<GpuDoubleCamera>{packDoubleCamera(camera)});
         add(BINDING_DOUBLE_OBJECTS, packed.doubleObjects);
     }
-    if (features.stressOutput)
-        add(BINDING_STRESS_OUTPUT, std::vector<GpuStressSample>(size_t(tile) * size_t(tile)));
     // Exactly the variant's bindings (bindingsFor): no buffer uploaded for nothing.
-    if (bindings.size() != buffers_.size())
+    if (bindings.size() != buffers_.size() + slots_[0].buffers.size())
         throw Error("internal: the buffers uploaded differ from the variant's bindings");
     copyStaged();
 
-    descriptors_.emplace(c, pipeline.compute);
-    const vk::DescriptorSet set = *descriptors_->set;
-    std::vector<vk::DescriptorBufferInfo> infos;
-    infos.reserve(buffers_.size());
-    views_.reserve(buffers_.size());
-    std::vector<vk::WriteDescriptorSet> writes;
-    for (const auto& [binding, buffer] : buffers_) {
-        const BindingUse use = useOf(kindOf(binding));
-        vk::WriteDescriptorSet& write = writes.emplace_back(set, binding, 0, 1, use.descriptor);
-        if (use.texelBytes > 0) {
-            views_.emplace_back(c.device, vk::BufferViewCreateInfo({}, buffer->buffer(), use.format,
-                                                                   0, VK_WHOLE_SIZE));
-            write.setPTexelBufferView(&*views_.back());  // reserved: the views stay put
-        } else {
-            write.setPBufferInfo(&infos.emplace_back(buffer->buffer(), 0, VK_WHOLE_SIZE));
+    for (Slot& slot : slots_) {
+        slot.descriptors.emplace(c, pipeline.compute);
+        const vk::DescriptorSet set = *slot.descriptors->set;
+        std::vector<vk::DescriptorBufferInfo> infos;
+        infos.reserve(bindings.size());
+        slot.views.reserve(bindings.size());
+        std::vector<vk::WriteDescriptorSet> writes;
+        for (const Buffers* group : {&buffers_, &slot.buffers}) {
+            for (const auto& [binding, buffer] : *group) {
+                const BindingUse use = useOf(kindOf(binding));
+                vk::WriteDescriptorSet& write = writes.emplace_back(set, binding, 0, 1, use.descriptor);
+                if (use.texelBytes > 0) {
+                    slot.views.emplace_back(c.device, vk::BufferViewCreateInfo({}, buffer->buffer(),
+                                                                               use.format, 0,
+                                                                               VK_WHOLE_SIZE));
+                    write.setPTexelBufferView(&*slot.views.back());  // reserved: the views stay put
+                } else {
+                    write.setPBufferInfo(&infos.emplace_back(buffer->buffer(), 0, VK_WHOLE_SIZE));
+                }
+            }
+        }
+        c.device.updateDescriptorSets(writes, nullptr);
+    }
+}
+
+TracePass::~TracePass() {
+    for (Slot& slot : slots_) {
+        if (!slot.inFlight) continue;
+        // Unwinding (an error, an interruption): the device finishes before
+        // the buffers go; a failing wait changes nothing then.
+        try {
+            (void)c_.device.waitForFences(*slot.fence, VK_TRUE, UINT64_MAX);
+        } catch (...) {
         }
     }
-    c.device.updateDescriptorSets(writes, nullptr);
 }
 
 void TracePass::traceTile(int tx, int ty, int w, int h, int block, uint& turnBudget,
                           GpuRenderStats& stats) {
+    start(0, tx, ty, w, h, block, turnBudget);
+    finish(0, turnBudget, stats);
+}
+
+void TracePass::start(int slot, int tx, int ty, int w, int h, int block, uint turnBudget) {
+    Slot& s = slots_.at(size_t(slot));
+    if (s.inFlight) throw Error("internal: a tile started in a slot still in flight");
+    const uint raysX = uint((w + block - 1) / block), raysY = uint((h + block - 1) / block);
+    s.params = TileParams{{uint(tx), uint(ty), uint(w), uint(h)},
+                          {turnBudget, 1u, kCanaryTurns, raysX},
+                          {firstSample_, endSample_, 0u, 0u}};
+    const uint groupX = pipeline_.workgroupX, groupY = pipeline_.workgroupY;
+    s.groupsX = (raysX + groupX - 1) / groupX;
+    s.groupsY = (raysY + groupY - 1) / groupY;
+    submit(s, true);
+}
+
+void TracePass::finish(int slot, uint& turnBudget, GpuRenderStats& stats) {
+    Slot& s = slots_.at(size_t(slot));
     for (;;) {
-        GpuDispatchStatus status{};
-        bool first = true;
-        do {
-            status = dispatch(tx, ty, w, h, block, turnBudget, first, stats.deviceSeconds);
-            ++stats.dispatches;
-            first = false;
-        } while (status.counts.y == 0 && status.counts.x > 0);
-        if (status.counts.y == 0) return;
-        ++stats.tilesRedone;
-        if (turnBudget == 1)
-            throw BeyondTheLoopLimit(
-                "the GPU cannot trace one ray of the tile at (" + std::to_string(tx) + ", " +
-                std::to_string(ty) + ") within the driver's loop limit (" + c_.info.name +
-                " ends every loop of an invocation after a fixed "
-                "number of turns; llvmpipe's is 65 535), so the result would be "
-                "wrong. Render with --cpu, or make the scene simpler for one ray "
-                "(fewer lights, objects or triangles along it)");
-        turnBudget = std::max<uint>(1, turnBudget / 4);
+        const GpuDispatchStatus status = wait(s, stats.deviceSeconds);
+        ++stats.dispatches;
+        if (status.counts.y != 0) {
+            // The driver cut a dispatch short: the tile starts over, with less work a dispatch.
+            ++stats.tilesRedone;
+            const TileParams& p = s.params;
+            if (p.work.x == 1)
+                throw BeyondTheLoopLimit(
+                    "the GPU cannot trace one ray of the tile at (" + std::to_string(p.tile.x) +
+                    ", " + std::to_string(p.tile.y) + ") within the driver's loop limit (" +
+                    c_.info.name +
+                    " ends every loop of an invocation after a fixed "
+                    "number of turns; llvmpipe's is 65 535), so the result would be "
+                    "wrong. Render with --cpu, or make the scene simpler for one ray "
+                    "(fewer lights, objects or triangles along it)");
+            turnBudget = std::min(turnBudget, std::max<uint>(1, p.work.x / 4));
+            s.params.work.x = turnBudget;
+            submit(s, true);
+        } else if (status.counts.x > 0) {
+            submit(s, false);  // some rays paused: they go on where they stopped
+        } else {
+            return;
+        }
     }
 }
 
-GpuDispatchStatus TracePass::dispatch(int tx, int ty, int w, int h, int block, uint turnBudget,
-                                      bool first, std::optional<double>& deviceSeconds) {
-    const uint raysX = uint((w + block - 1) / block), raysY = uint((h + block - 1) / block);
-    const TileParams tileParams{{uint(tx), uint(ty), uint(w), uint(h)},
-                                {turnBudget, first ? 1u : 0u, kCanaryTurns, raysX},
-                                {firstSample_, endSample_, 0u, 0u}};
+void TracePass::submit(Slot& s, bool first) {
+    s.params.work.y = first ? 1u : 0u;
     const GpuDispatchStatus zero{};
-    buffer(BINDING_STATUS).upload(&zero, sizeof zero);
-    commands_.reset();
-    commands_.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-    commands_.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.compute.pipeline);
-    commands_.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.compute.layout, 0,
-                                 *descriptors_->set, nullptr);
-    commands_.pushConstants<TileParams>(*pipeline_.compute.layout,
-                                        vk::ShaderStageFlagBits::eCompute, 0, tileParams);
-    if (timesDispatches()) {
-        commands_.resetQueryPool(*timestamps_, 0, 2);
-        commands_.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *timestamps_, 0);
+    buffer(BINDING_STATUS, int(&s - slots_.data())).upload(&zero, sizeof zero);
+    const vk::raii::CommandBuffer& commands = s.commands;
+    commands.reset();
+    commands.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.compute.pipeline);
+    commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.compute.layout, 0,
+                                *s.descriptors->set, nullptr);
+    commands.pushConstants<TileParams>(*pipeline_.compute.layout,
+                                       vk::ShaderStageFlagBits::eCompute, 0, s.params);
+    if (*s.timestamps) {
+        commands.resetQueryPool(*s.timestamps, 0, 2);
+        commands.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *s.timestamps, 0);
     }
-    const uint groupX = pipeline_.workgroupX, groupY = pipeline_.workgroupY;
-    commands_.dispatch((raysX + groupX - 1) / groupX, (raysY + groupY - 1) / groupY, 1);
-    if (timesDispatches())
-        commands_.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *timestamps_, 1);
+    commands.dispatch(s.groupsX, s.groupsY, 1);
+    if (*s.timestamps)
+        commands.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *s.timestamps, 1);
     // Shader writes must be visible to the host before the read-back.
     vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
-    commands_.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
-                              vk::PipelineStageFlagBits::eHost, {}, toHost, nullptr, nullptr);
-    commands_.end();
-    submitAndWait(c_, vk::SubmitInfo({}, {}, *commands_), fence_, "a tile");
+    commands.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
+                             vk::PipelineStageFlagBits::eHost, {}, toHost, nullptr, nullptr);
+    commands.end();
+    c_.queue.submit(vk::SubmitInfo({}, {}, *commands), *s.fence);
+    s.inFlight = true;
+}
+
+GpuDispatchStatus TracePass::wait(Slot& s, std::optional<double>& deviceSeconds) {
+    const int slot = int(&s - slots_.data());
+    if (c_.device.waitForFences(*s.fence, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
+        throw Error("waiting for a tile failed");
+    s.inFlight = false;
+    c_.device.resetFences(*s.fence);
     if (injectedFault() == Fault::DeviceLost)  // after the wait: nothing still runs
         throw vk::DeviceLostError("vkWaitForFences (injected by VKRAY_FAULT)");
-    if (timesDispatches()) {
+    if (*s.timestamps) {
         // Both were written before the fence signalled: no wait.
-        const auto [result, ticks] = timestamps_.getResults<std::uint64_t>(
+        const auto [result, ticks] = s.timestamps.getResults<std::uint64_t>(
             0, 2, 2 * sizeof(std::uint64_t), sizeof(std::uint64_t), vk::QueryResultFlagBits::e64);
         if (result != vk::Result::eSuccess)
             throw Error("the device's timestamps of a tile were not ready after its fence");
         const unsigned bits = c_.info.timestampValidBits;
         const std::uint64_t mask = bits >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << bits) - 1;
         const std::uint64_t elapsed = ((ticks[1] & mask) - (ticks[0] & mask)) & mask;
-        deviceSeconds = deviceSeconds.value_or(0.0) + double(elapsed) * c_.info.timestampPeriodNs * 1e-9;
+        deviceSeconds =
+            deviceSeconds.value_or(0.0) + double(elapsed) * c_.info.timestampPeriodNs * 1e-9;
     }
-    buffer(BINDING_PIXELS).invalidate();
-    buffer(BINDING_STATUS).invalidate();
-    if (buffers_.count(BINDING_DEBUG)) buffer(BINDING_DEBUG).invalidate();
-    if (buffers_.count(BINDING_STRESS_OUTPUT)) buffer(BINDING_STRESS_OUTPUT).invalidate();
-    return *static_cast<const GpuDispatchStatus*>(buffer(BINDING_STATUS).data());
+    buffer(BINDING_PIXELS, slot).invalidate();
+    buffer(BINDING_STATUS, slot).invalidate();
+    if (kinds_.count(BINDING_DEBUG)) buffer(BINDING_DEBUG, slot).invalidate();
+    if (kinds_.count(BINDING_STRESS_OUTPUT)) buffer(BINDING_STRESS_OUTPUT, slot).invalidate();
+    return *static_cast<const GpuDispatchStatus*>(buffer(BINDING_STATUS, slot).data());
 }
 
 }  // namespace vkray::gpu

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <optional>
@@ -38,81 +39,103 @@ vk::DescriptorType descriptorTypeOf(BindingKind kind);
 constexpr uint kTurnBudget = 4096;
 constexpr uint kCanaryTurns = 4;
 
-// Everything one render needs on the device: the scene's buffers, the
-// descriptor set and a command buffer; traceTile() traces one tile and
-// waits for it.
+// Everything one render needs on the device: the scene's buffers, and for
+// each of `slots` tiles in flight its own buffers (pixels, progress, status,
+// pending rays, the debug and stress records), descriptor set, command
+// buffer and fence. With two slots the next tile is submitted before the
+// host waits for this one, so the device traces it while the host reads this
+// one back; traceTile() traces one tile in slot 0 and waits for it.
 class TracePass {
 public:
     // doubles: the fp64 variant, which also reads the camera and M^-1 in double.
     TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
               bool doubles, const Scene& scene, const CameraBasis& camera,
-              const RenderSettings& settings, int tile);
+              const RenderSettings& settings, int tile, int slots = 1);
+    // Waits for what is still in flight: the device may not outlive its buffers.
+    ~TracePass();
+    TracePass(const TracePass&) = delete;
+    TracePass& operator=(const TracePass&) = delete;
 
-    // Traces the rays of the tile at (tx, ty) of w x h pixels and waits; the
-    // tile's pixels are then in pixels(), row-major with stride w. Each ray
-    // does at most `turnBudget` counted loop turns per dispatch and the tile
-    // is dispatched again until all are done (the image does not depend on
-    // the budget). A dispatch the driver cut short (its canary ran short)
-    // starts the tile over with a quarter of the budget, which later tiles
-    // keep; when a single ray overruns the driver's limit, it is an Error.
+    int slots() const { return int(slots_.size()); }
+
+    // Submits the first dispatch of the tile at (tx, ty) of w x h pixels in
+    // `slot`, whose last tile must be finished; returns without waiting.
+    void start(int slot, int tx, int ty, int w, int h, int block, uint turnBudget);
+    // Waits for the tile of `slot` and dispatches it again until all its rays
+    // are done; its pixels are then in pixels(slot), row-major with stride w.
+    // Each ray does at most `turnBudget` counted loop turns per dispatch (the
+    // image does not depend on the budget). A dispatch the driver cut short
+    // (its canary ran short) starts the tile over with a quarter of the
+    // budget, which later tiles keep; when a single ray overruns the
+    // driver's limit, it is an Error. With timestamps, each dispatch's time
+    // on the device is added to stats.deviceSeconds.
+    void finish(int slot, uint& turnBudget, GpuRenderStats& stats);
+    // start() and finish() in slot 0.
     void traceTile(int tx, int ty, int w, int h, int block, uint& turnBudget,
                    GpuRenderStats& stats);
 
-    // One dispatch over the tile; `first`: its rays start afresh. With
-    // timestamps, its time on the device is added to *deviceSeconds.
-    GpuDispatchStatus dispatch(int tx, int ty, int w, int h, int block, uint turnBudget,
-                               bool first, std::optional<double>& deviceSeconds);
-
-    // The device's queue writes timestamps (DeviceInfo::timestampValidBits).
-    bool timesDispatches() const { return bool(*timestamps_); }
-
-    const GpuPixel* pixels() const {
-        return static_cast<const GpuPixel*>(buffer(BINDING_PIXELS).data());
+    const GpuPixel* pixels(int slot = 0) const {
+        return static_cast<const GpuPixel*>(buffer(BINDING_PIXELS, slot).data());
     }
-    std::uint64_t pixelBuffer() const {
-        const VkBuffer handle = buffer(BINDING_PIXELS).buffer();
+    std::uint64_t pixelBuffer(int slot = 0) const {
+        const VkBuffer handle = buffer(BINDING_PIXELS, slot).buffer();
         std::uint64_t bits = 0;
         static_assert(sizeof bits == sizeof handle);
         std::memcpy(&bits, &handle, sizeof bits);
         return bits;
     }
-    const GpuStressSample* stressSamples() const {
-        return static_cast<const GpuStressSample*>(buffer(BINDING_STRESS_OUTPUT).data());
+    const GpuStressSample* stressSamples(int slot = 0) const {
+        return static_cast<const GpuStressSample*>(buffer(BINDING_STRESS_OUTPUT, slot).data());
     }
     const GpuDebugHeader& debugHeader() const {
-        return *static_cast<const GpuDebugHeader*>(buffer(BINDING_DEBUG).data());
+        return *static_cast<const GpuDebugHeader*>(buffer(BINDING_DEBUG, 0).data());
     }
     const GpuDebugEntry* debugEntries() const {
         return reinterpret_cast<const GpuDebugEntry*>(&debugHeader() + 1);
     }
 
 private:
-    // The buffer of `binding`, made for the way the variant reads it, holding `items`.
+    using Buffers = std::map<uint, std::unique_ptr<HostBuffer>>;  // by binding
+    // One tile in flight: what the shader writes, and how it is dispatched.
+    struct Slot {
+        Buffers buffers;
+        std::vector<vk::raii::BufferView> views;  // of its texel buffers, and of the scene's
+        std::optional<DescriptorSet> descriptors;
+        vk::raii::CommandBuffer commands = nullptr;
+        vk::raii::Fence fence = nullptr;
+        vk::raii::QueryPool timestamps = nullptr;  // before and after the dispatch, if the queue can
+        TileParams params{};                       // of the dispatch submitted last
+        uint groupsX = 0, groupsY = 0;             // the workgroups of its dispatches
+        bool inFlight = false;                     // submitted, not yet waited for
+    };
+
+    // Records and submits one dispatch of the slot's tile; `first`: its rays start afresh.
+    void submit(Slot& slot, bool first);
+    // Waits for the slot's dispatch and returns its status.
+    GpuDispatchStatus wait(Slot& slot, std::optional<double>& deviceSeconds);
+    // The buffer of `binding`, made for the way the variant reads it, holding
+    // `items`: the scene's, or with slot >= 0 that slot's own.
     template <typename T>
-    void add(uint binding, const std::vector<T>& items);
+    void add(uint binding, const std::vector<T>& items, int slot = -1);
     BindingKind kindOf(uint binding) const;
     // The same, `bytes` left as they are: the shader writes before it reads.
-    void allocate(uint binding, size_t bytes);
+    void allocate(uint binding, size_t bytes, int slot);
     // Copies what add() staged into the device-local buffers, and waits.
     void copyStaged();
-    HostBuffer& buffer(uint binding) const { return *buffers_.at(binding); }
+    HostBuffer& buffer(uint binding, int slot = 0) const;
 
     Context::Impl& c_;
     const Pipeline& pipeline_;
-    std::map<uint, BindingKind> kinds_;                    // the variant's bindings
-    uint firstSample_, endSample_;                         // the samples each ray traces
-    std::map<uint, std::unique_ptr<HostBuffer>> buffers_;  // by binding
+    std::map<uint, BindingKind> kinds_;  // the variant's bindings
+    uint firstSample_, endSample_;       // the samples each ray traces
+    Buffers buffers_;                    // the scene's, shared by the slots
     struct Staged {
         std::unique_ptr<HostBuffer> from;  // host-visible
         vk::Buffer to;                     // device-local
         vk::DeviceSize bytes;
     };
-    std::vector<Staged> staged_;               // until copyStaged()
-    std::vector<vk::raii::BufferView> views_;  // of the texel buffers
-    std::optional<DescriptorSet> descriptors_;
-    vk::raii::CommandBuffer commands_ = nullptr;
-    vk::raii::Fence fence_ = nullptr;
-    vk::raii::QueryPool timestamps_ = nullptr;  // before and after the dispatch, if the queue can
+    std::vector<Staged> staged_;  // until copyStaged()
+    std::vector<Slot> slots_;
 };
 
 }  // namespace vkray::gpu

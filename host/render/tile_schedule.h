@@ -1,6 +1,7 @@
 // Which tiles of a frame a renderer traces, and who hears when each is done.
-// One process traces every tile, row by row; `vkray render` under mpirun
-// hands tiles out across the ranks instead (host/dist/distributed_render.*).
+// One process traces every tile of tilesOf, row by row, two in flight;
+// `vkray render` under mpirun hands tiles out across the ranks instead
+// (host/dist/distributed_render.*), one at a time.
 #pragma once
 
 #include <algorithm>
@@ -44,26 +45,6 @@ public:
     virtual std::optional<TileRect> next() = 0;
     // `tile` of `frame` is traced.
     virtual void finished(const TileRect& tile, const Frame& frame) = 0;
-};
-
-// Every tile, in tilesOf's order: the one-process schedule.
-class AllTilesInRows final : public TileSchedule {
-public:
-    explicit AllTilesInRows(bool serpentine = false) : serpentine_(serpentine) {}
-    void plan(int width, int height, int tileSide) override {
-        tiles_ = tilesOf(width, height, tileSide, serpentine_);
-        nextIndex_ = 0;
-    }
-    std::optional<TileRect> next() override {
-        if (nextIndex_ == tiles_.size()) return std::nullopt;
-        return tiles_[nextIndex_++];
-    }
-    void finished(const TileRect&, const Frame&) override {}
-
-private:
-    bool serpentine_;
-    std::vector<TileRect> tiles_;
-    std::size_t nextIndex_ = 0;
 };
 
 }  // namespace vkray

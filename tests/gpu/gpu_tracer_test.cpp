@@ -3,12 +3,16 @@
 #include "support/gpu_fixture.h"
 
 #include "render/camera.h"
+#include "render/render_progress.h"
+#include "render/tile_schedule.h"
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace vkray {
@@ -135,6 +139,72 @@ TEST(GpuTracer, TilesStitchIntoTheSameImage) {
     EXPECT_EQ(smallStats.tiles, 4u * 3u);
     EXPECT_EQ(a.color, b.color);
     EXPECT_EQ(a.id, b.id);
+}
+
+// Every tile of tilesOf, handed out one at a time: the path of a schedule
+// (MPI's), where the renderer keeps one tile in flight, not two.
+class OneTileAtATime final : public TileSchedule {
+public:
+    void plan(int width, int height, int side) override { tiles_ = tilesOf(width, height, side); }
+    std::optional<TileRect> next() override {
+        if (next_ == tiles_.size()) return std::nullopt;
+        return tiles_[next_++];
+    }
+    void finished(const TileRect&, const Frame&) override { ++finished_; }
+    std::size_t finishedTiles() const { return finished_; }
+
+private:
+    std::vector<TileRect> tiles_;
+    std::size_t next_ = 0, finished_ = 0;
+};
+
+TEST(GpuTracer, TwoTilesInFlightGiveTheBytesOfOneAtATime) {
+    // Two tiles in flight, each dispatched several times (a low turn budget
+    // pauses their rays), their re-dispatches interleaved: the image is that
+    // of one tile at a time, byte for byte, AOVs included.
+    Scene scene = parseSdl("light 4 4 4 1 1 1 push translate 0.3 0 0 sphere pop cube",
+                           "tiles.sdl", {});
+    Camera camera;
+    camera.eye = {3, 4, 5};
+    const RenderSettings settings{50, 40, 1, 4};
+    const CameraBasis basis = makeCameraBasis(camera, 50, 40);
+    gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir,
+                                               .tileSize = 16,
+                                               .turnBudget = 8});
+    gpu::GpuRenderStats overlapped, sequential;
+    const Frame a = tracer.render(scene, basis, settings, &overlapped);
+    OneTileAtATime schedule;
+    const Frame b = tracer.render(scene, basis, settings, &sequential, nullptr, &schedule);
+    EXPECT_EQ(schedule.finishedTiles(), 12u);
+    EXPECT_EQ(overlapped.tiles, 12u);
+    EXPECT_GT(overlapped.dispatches, overlapped.tiles);  // the rays did pause
+    EXPECT_EQ(overlapped.dispatches, sequential.dispatches);
+    EXPECT_EQ(a.color, b.color);
+    EXPECT_EQ(a.depth, b.depth);
+    EXPECT_EQ(a.normal, b.normal);
+    EXPECT_EQ(a.id, b.id);
+}
+
+TEST(GpuTracer, InterruptedWithTilesInFlightRendersAgain) {
+    // The progress callback stops the render after its first tile, while the
+    // second is still on the device: the pass waits for it before its
+    // buffers go (ASan and the validation layers would see otherwise), and
+    // the tracer renders the same frame again whole.
+    Scene scene = parseSdl("push translate 0.3 0 0 sphere pop cube", "stop.sdl", {});
+    Camera camera;
+    camera.eye = {3, 4, 5};
+    const CameraBasis basis = makeCameraBasis(camera, 50, 40);
+    gpu::GpuTracer tracer(test::gpuContext(),
+                          {.shaderDirectory = test::kShaderDir, .tileSize = 16});
+    int calls = 0;
+    EXPECT_THROW(tracer.render(scene, basis, {50, 40, 1}, nullptr,
+                               [&calls](std::size_t, std::size_t) { return ++calls < 2; }),
+                 Interrupted);
+    EXPECT_EQ(calls, 2);  // the start, then the first tile
+    gpu::GpuRenderStats stats;
+    const Frame again = tracer.render(scene, basis, {50, 40, 1}, &stats);
+    EXPECT_EQ(stats.tiles, 12u);
+    EXPECT_EQ(again.id, test::renderOnGpu(scene, basis, {50, 40, 1}).id);
 }
 
 TEST(GpuTracer, DeviceTimeOfTheDispatchesLiesWithinTheRender) {
