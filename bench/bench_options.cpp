@@ -80,6 +80,10 @@ BenchOptions parseBenchOptions(const std::vector<std::string>& args, const Bench
                  "add the tuning table: workgroup shapes, tile "
                  "sizes and order, an early-out");
     app.add_flag("--only-experiments", o.onlyExperiments, "the tuning table alone");
+    app.add_option("--against", o.againstDirectory,
+                   "the tuning table alone, as the shaders of DIR against --shader-dir's, their "
+                   "runs interleaved in one process (an A/B test of a shader change)")
+        ->type_name("DIR");
     app.footer("scenes: " + joined(knownScenes) + "\ndefault list: " + joined(defaults.sceneNames));
 
     std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them so
@@ -95,6 +99,7 @@ BenchOptions parseBenchOptions(const std::vector<std::string>& args, const Bench
     o.cpu = !noCpu;
     o.embree = !noEmbree;
     o.fma = !noFma;
+    o.onlyExperiments = o.onlyExperiments || !o.againstDirectory.empty();
     o.experiments = o.experiments || o.onlyExperiments;
     if (o.allWidth == 0) {
         o.allWidth = o.width;

@@ -19,6 +19,8 @@ struct BenchOptions {
     bool all = true, cpu = true, embree = true, fma = true;
     bool shaded = false;                                // keep lights and secondary rays
     bool experiments = false, onlyExperiments = false;  // the tuning table (docs/benchmarks.md)
+    std::string
+        againstDirectory;  // --against: the tuning table is these shaders against --shader-dir's
     std::string helpText;  // --help: the usage to print (nothing else is set then)
 };
 

@@ -326,21 +326,29 @@ void runExperiments(const Options& o, gpu::Context& context) {
         change(options);
         return options;
     };
-    const std::vector<Experiment> experiments{
-        {"8x8 workgroups, 256 px tiles (shipped)", base},
-        {"16x4 workgroups", with([](auto& p) { p.workgroupX = 16, p.workgroupY = 4; })},
-        {"32x2 workgroups", with([](auto& p) { p.workgroupX = 32, p.workgroupY = 2; })},
-        {"4x16 workgroups", with([](auto& p) { p.workgroupX = 4, p.workgroupY = 16; })},
-        {"64 px tiles", with([](auto& p) { p.tileSize = 64; })},
-        {"1024 px tiles", with([](auto& p) { p.tileSize = 1024; })},
-        {"serpentine tile order", with([](auto& p) { p.serpentineTiles = true; })},
-        {"sphere early-out (behind the ray)", with([](auto& p) {
-             p.userDefines = {{"VKRAY_SPHERE_EARLY_OUT", "1"}};
-         })},
-        {"8 lanes in a row (not 4x2)", with([](auto& p) {
-             p.userDefines = {{"VKRAY_ROW_LANES", "1"}};
-         })},
-    };
+    std::vector<Experiment> experiments;
+    if (!o.againstDirectory.empty()) {
+        // An A/B test of a shader change: both folders' runs alternate.
+        experiments = {
+            {"--shader-dir", base},
+            {"--against", with([&](auto& p) { p.shaderDirectory = o.againstDirectory; })}};
+    } else {
+        experiments = {
+            {"8x8 workgroups, 256 px tiles (shipped)", base},
+            {"16x4 workgroups", with([](auto& p) { p.workgroupX = 16, p.workgroupY = 4; })},
+            {"32x2 workgroups", with([](auto& p) { p.workgroupX = 32, p.workgroupY = 2; })},
+            {"4x16 workgroups", with([](auto& p) { p.workgroupX = 4, p.workgroupY = 16; })},
+            {"64 px tiles", with([](auto& p) { p.tileSize = 64; })},
+            {"1024 px tiles", with([](auto& p) { p.tileSize = 1024; })},
+            {"serpentine tile order", with([](auto& p) { p.serpentineTiles = true; })},
+            {"sphere early-out (behind the ray)", with([](auto& p) {
+                 p.userDefines = {{"VKRAY_SPHERE_EARLY_OUT", "1"}};
+             })},
+            {"8 lanes in a row (not 4x2)", with([](auto& p) {
+                 p.userDefines = {{"VKRAY_ROW_LANES", "1"}};
+             })},
+        };
+    }
     std::printf(
         "\nTuning (specialised variant, %dx%d, best of %d interleaved runs), Mrays per "
         "CPU-second and its ratio to the shipped configuration:\n\n",

@@ -286,9 +286,13 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
     uint sampleIndex = floatBitsToUint(ray.sum.w);
     uint top = floatBitsToUint(ray.color.w);
     vec3 sum = ray.sum.rgb, color = ray.color.rgb;
+#if VKRAY_RAY_STACK
     if (top == 0u) pushRay(top, primaryTask(sampleIndex));  // the first dispatch
-#if !VKRAY_RAY_STACK
-    else pendingRay = primaryTask(sampleIndex);  // a paused primary-only sample has only its primary ray left
+#else
+    // The first dispatch's ray, or a paused sample's only one left: both
+    // sides of an if run on llvmpipe, so the ray is made once for both.
+    pendingRay = primaryTask(sampleIndex);
+    top = 1u;
 #endif
     // The hit whose lights are being visited (while light < the light count).
     RayTask task;
@@ -401,8 +405,15 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
             if (top == 0u) {
                 sum += color;
                 color = vec3(0.0);
+#if VKRAY_ANTIALIAS
                 if (++sampleIndex == samples) break;
                 pushRay(top, primaryTask(sampleIndex));
+#else
+                // One sample a pixel: no next ray to make (were there one, it
+                // would start in the next dispatch, the ray not done).
+                ++sampleIndex;
+                break;
+#endif
             }
             if (loopTurns >= budget) break;
         }
