@@ -28,8 +28,7 @@ int runDevices(std::ostream& out) {
             << ", memory heap " << d.memoryHeapBytes << " bytes"
             << ", max workgroup size " << d.maxWorkgroupSize[0] << "x" << d.maxWorkgroupSize[1]
             << "x" << d.maxWorkgroupSize[2] << ", max workgroup count " << d.maxWorkgroupCount[0]
-            << "x" << d.maxWorkgroupCount[1] << "x" << d.maxWorkgroupCount[2]
-            << ", timestamps "
+            << "x" << d.maxWorkgroupCount[1] << "x" << d.maxWorkgroupCount[2] << ", timestamps "
             << (d.timestampValidBits > 0 ? std::to_string(d.timestampValidBits) + " bits, " +
                                                fixedDigits(d.timestampPeriodNs, 3) + " ns a tick"
                                          : std::string("no"))

@@ -72,12 +72,11 @@ private:
 // fail as a real device can but a test cannot cause: `no-compute` (every
 // device lacks a compute queue), `device-lost` (after the first tile),
 // `out-of-device-memory` (at the first buffer allocation), `no-float64` (no
-// device has shaderFloat64), `no-timestamps` (no queue has timestamps); or `slow-progress`: every progress report of a
-// render waits 25 ms, so that tests of progress lines and interruption do
-// not depend on the machine's speed; or `no-offset`: the shader's secondary
-// rays start on the surface they leave (VKRAY_FAULT_NO_OFFSET = 1), so that
-// tests can show `vkray stress` counting the acne that follows. Unset: None.
-// An unknown NAME is an Error.
+// device has shaderFloat64), `no-timestamps` (no queue has timestamps); or `slow-progress`: every
+// progress report of a render waits 25 ms, so that tests of progress lines and interruption do not
+// depend on the machine's speed; or `no-offset`: the shader's secondary rays start on the surface
+// they leave (VKRAY_FAULT_NO_OFFSET = 1), so that tests can show `vkray stress` counting the acne
+// that follows. Unset: None. An unknown NAME is an Error.
 enum class Fault {
     None,
     NoCompute,

@@ -53,8 +53,8 @@ struct GpuRenderStats {
     // before and after each: what the wall clock holds less the host's part
     // (submits, waits, read-back). Empty where the queue has no timestamps.
     std::optional<double> deviceSeconds;
-    CompiledShader shader;    // SPIR-V, key, cache hit, compile/load time
-    std::string variant;      // describe(features), e.g. "sphere+cube"
+    CompiledShader shader;  // SPIR-V, key, cache hit, compile/load time
+    std::string variant;    // describe(features), e.g. "sphere+cube"
     std::size_t tiles = 0;
     std::size_t dispatches = 0;   // a tile takes several when its rays pause (turnBudget)
     std::size_t tilesRedone = 0;  // started over: the driver's loop limit cut a dispatch short

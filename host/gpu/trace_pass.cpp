@@ -176,7 +176,8 @@ HostBuffer& TracePass::buffer(uint binding, int slot) const {
 void TracePass::allocate(uint binding, size_t bytes, int slot) {
     const BindingKind kind = kindOf(binding);
     slots_[size_t(slot)].buffers.emplace(
-        binding, std::make_unique<HostBuffer>(c_, bytes, useOf(kind).usage, memoryOf(binding, kind)));
+        binding,
+        std::make_unique<HostBuffer>(c_, bytes, useOf(kind).usage, memoryOf(binding, kind)));
 }
 
 TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
@@ -260,11 +261,12 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
         for (const Buffers* group : {&buffers_, &slot.buffers}) {
             for (const auto& [binding, buffer] : *group) {
                 const BindingUse use = useOf(kindOf(binding));
-                vk::WriteDescriptorSet& write = writes.emplace_back(set, binding, 0, 1, use.descriptor);
+                vk::WriteDescriptorSet& write =
+                    writes.emplace_back(set, binding, 0, 1, use.descriptor);
                 if (use.texelBytes > 0) {
-                    slot.views.emplace_back(c.device, vk::BufferViewCreateInfo({}, buffer->buffer(),
-                                                                               use.format, 0,
-                                                                               VK_WHOLE_SIZE));
+                    slot.views.emplace_back(
+                        c.device, vk::BufferViewCreateInfo({}, buffer->buffer(), use.format, 0,
+                                                           VK_WHOLE_SIZE));
                     write.setPTexelBufferView(&*slot.views.back());  // reserved: the views stay put
                 } else {
                     write.setPBufferInfo(&infos.emplace_back(buffer->buffer(), 0, VK_WHOLE_SIZE));
@@ -345,8 +347,8 @@ void TracePass::submit(Slot& s, bool first) {
     commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.compute.pipeline);
     commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.compute.layout, 0,
                                 *s.descriptors->set, nullptr);
-    commands.pushConstants<TileParams>(*pipeline_.compute.layout,
-                                       vk::ShaderStageFlagBits::eCompute, 0, s.params);
+    commands.pushConstants<TileParams>(*pipeline_.compute.layout, vk::ShaderStageFlagBits::eCompute,
+                                       0, s.params);
     if (*s.timestamps) {
         commands.resetQueryPool(*s.timestamps, 0, 2);
         commands.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *s.timestamps, 0);

@@ -103,10 +103,11 @@ private:
         std::optional<DescriptorSet> descriptors;
         vk::raii::CommandBuffer commands = nullptr;
         vk::raii::Fence fence = nullptr;
-        vk::raii::QueryPool timestamps = nullptr;  // before and after the dispatch, if the queue can
-        TileParams params{};                       // of the dispatch submitted last
-        uint groupsX = 0, groupsY = 0;             // the workgroups of its dispatches
-        bool inFlight = false;                     // submitted, not yet waited for
+        vk::raii::QueryPool timestamps =
+            nullptr;                    // before and after the dispatch, if the queue can
+        TileParams params{};            // of the dispatch submitted last
+        uint groupsX = 0, groupsY = 0;  // the workgroups of its dispatches
+        bool inFlight = false;          // submitted, not yet waited for
     };
 
     // Records and submits one dispatch of the slot's tile; `first`: its rays start afresh.

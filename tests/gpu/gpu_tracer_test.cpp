@@ -162,15 +162,14 @@ TEST(GpuTracer, TwoTilesInFlightGiveTheBytesOfOneAtATime) {
     // Two tiles in flight, each dispatched several times (a low turn budget
     // pauses their rays), their re-dispatches interleaved: the image is that
     // of one tile at a time, byte for byte, AOVs included.
-    Scene scene = parseSdl("light 4 4 4 1 1 1 push translate 0.3 0 0 sphere pop cube",
-                           "tiles.sdl", {});
+    Scene scene =
+        parseSdl("light 4 4 4 1 1 1 push translate 0.3 0 0 sphere pop cube", "tiles.sdl", {});
     Camera camera;
     camera.eye = {3, 4, 5};
     const RenderSettings settings{50, 40, 1, 4};
     const CameraBasis basis = makeCameraBasis(camera, 50, 40);
-    gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir,
-                                               .tileSize = 16,
-                                               .turnBudget = 8});
+    gpu::GpuTracer tracer(test::gpuContext(),
+                          {.shaderDirectory = test::kShaderDir, .tileSize = 16, .turnBudget = 8});
     gpu::GpuRenderStats overlapped, sequential;
     const Frame a = tracer.render(scene, basis, settings, &overlapped);
     OneTileAtATime schedule;
@@ -219,8 +218,7 @@ TEST(GpuTracer, DeviceTimeOfTheDispatchesLiesWithinTheRender) {
                           {.shaderDirectory = test::kShaderDir, .tileSize = 16});
     gpu::GpuRenderStats stats;
     tracer.render(scene, makeCameraBasis(camera, 50, 40), {50, 40, 1}, &stats);
-    ASSERT_EQ(stats.deviceSeconds.has_value(),
-              test::gpuContext().device().timestampValidBits > 0);
+    ASSERT_EQ(stats.deviceSeconds.has_value(), test::gpuContext().device().timestampValidBits > 0);
     if (!stats.deviceSeconds) GTEST_SKIP() << "the device's queue has no timestamps";
     EXPECT_EQ(stats.dispatches, 12u);
     EXPECT_GT(*stats.deviceSeconds, 0.0);
