@@ -83,7 +83,8 @@ BenchOptions parseBenchOptions(const std::vector<std::string>& args, const Bench
     app.add_option("--against", o.againstDirectory,
                    "the tuning table alone, as the shaders of DIR against --shader-dir's, their "
                    "runs interleaved in one process (an A/B test of a shader change)")
-        ->type_name("DIR");
+        ->type_name("DIR")
+        ->check(CLI::ExistingDirectory);
     app.footer("scenes: " + joined(knownScenes) + "\ndefault list: " + joined(defaults.sceneNames));
 
     std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them so

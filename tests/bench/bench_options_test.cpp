@@ -56,6 +56,17 @@ TEST(BenchOptions, DefaultsAndEveryFlag) {
     EXPECT_EQ(o.shaderDirectory, "s");
 }
 
+TEST(BenchOptions, AgainstIsTheTuningTableAloneOverTwoShaderFolders) {
+    const std::string folder = ::testing::TempDir();
+    const BenchOptions o = parse({"--against", folder});
+    EXPECT_EQ(o.againstDirectory, folder);
+    EXPECT_TRUE(o.experiments && o.onlyExperiments);
+    EXPECT_FALSE(parse({}).onlyExperiments);
+    const std::string missing = errorOf({"--against", "no/such/folder"});
+    EXPECT_NE(missing.find("--against"), std::string::npos) << missing;
+    EXPECT_NE(missing.find("no/such/folder"), std::string::npos) << missing;
+}
+
 TEST(BenchOptions, SceneFilesAloneReplaceTheDefaultList) {
     const BenchOptions files = parse({"--scene", "a.sdl", "--scene", "b.sdl"});
     EXPECT_TRUE(files.sceneNames.empty());
