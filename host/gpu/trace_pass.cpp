@@ -111,12 +111,16 @@ vk::DescriptorType descriptorTypeOf(BindingKind kind) {
     return useOf(kind).descriptor;
 }
 
+namespace {
+
 // The bindings the shader writes: each tile in flight has its own.
 bool perTile(uint binding) {
     return binding == BINDING_PIXELS || binding == BINDING_PROGRESS || binding == BINDING_STATUS ||
            binding == BINDING_RAY_STACK || binding == BINDING_DEBUG ||
            binding == BINDING_STRESS_OUTPUT;
 }
+
+}  // namespace
 
 template <typename T>
 void TracePass::add(uint binding, const std::vector<T>& items, int slot) {
