@@ -348,6 +348,16 @@ void TracePass::submit(Slot& s, bool first) {
     const vk::raii::CommandBuffer& commands = s.commands;
     commands.reset();
     commands.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    if (!first) {
+        // The rays go on from the progress and pending rays the tile's
+        // previous dispatch wrote: its writes must be visible to this one.
+        vk::MemoryBarrier resumed(
+            vk::AccessFlagBits::eShaderWrite,
+            vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+        commands.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
+                                 vk::PipelineStageFlagBits::eComputeShader, {}, resumed, nullptr,
+                                 nullptr);
+    }
     commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.compute.pipeline);
     commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.compute.layout, 0,
                                 *s.descriptors->set, nullptr);
