@@ -9,6 +9,7 @@
 // _REFLECTION, _REFRACTION, _TEXTURES, _PIXMAPS and _ANTIALIAS add the parts
 // of Whitted shading the scene uses;
 // VKRAY_OBJECT_BVH finds objects through a BVH instead of testing each;
+// VKRAY_BLOCKS (--block > 1) fills each ray's block of pixels;
 // VKRAY_DEBUG_PIXEL (for `vkray pixel`) also records every step of the one
 // ray the host dispatches into the debug buffer; VKRAY_STRESS_OUTPUT (for
 // `vkray stress` and `vkray pixel`) what each pixel's primary ray and its
@@ -343,11 +344,15 @@ void main() {
         } else {
             GpuPixel result = loadPixel(firstPixel);
             result.color.rgb = ray.sum.rgb / float(endSample - firstSample);
+#if VKRAY_BLOCKS
             // Fill the block (clipped to the tile).
             uvec2 last = min(first + uvec2(block), tileSize);
             for (uint y = first.y; y < last.y; ++y)
                 for (uint x = first.x; x < last.x; ++x)
                     storePixel(y * tileSize.x + x, result);
+#else
+            storePixel(firstPixel, result);  // no loop: its first turn costs, needed or not
+#endif
 #if VKRAY_DEBUG_PIXEL
             recordDebug(result);
 #endif

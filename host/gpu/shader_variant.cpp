@@ -66,6 +66,8 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
     features.shading[size_t(Shading::Shadows)] = canShadow(scene);
     features.lights = !scene.lights.empty() || allFeatures;
     features.shading[size_t(Shading::Antialias)] = settings.spp > 1;
+    // A loop fills a ray's block; every loop costs a turn on llvmpipe, needed or not.
+    features.blocks = settings.block > 1 || allFeatures;
     if (allFeatures) {
         features.kinds.fill(true);
         features.shading.fill(true);
@@ -99,6 +101,7 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines) {
     // Shadows are feelers toward lights: they bring the light code in.
     defines.emplace_back("VKRAY_LIGHTS", flag(features.lights || features.has(Shading::Shadows)));
     defines.emplace_back("VKRAY_OBJECT_BVH", flag(features.objectBvh));
+    defines.emplace_back("VKRAY_BLOCKS", flag(features.blocks));
     defines.emplace_back("VKRAY_DEBUG_PIXEL", flag(features.debugPixel));
     defines.emplace_back("VKRAY_STRESS_OUTPUT", flag(features.stressOutput));
     defines.emplace_back("VKRAY_OBJECTS", std::to_string(features.unrolledObjects));
@@ -112,8 +115,8 @@ std::vector<std::string> variantFlags() {
     std::vector<std::string> flags;
     for (const GpuKind& kind : kGpuKinds) flags.push_back(kind.define);
     for (const GpuShading& shading : kGpuShading) flags.push_back(shading.define);
-    for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_DEBUG_PIXEL",
-                              "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET",
+    for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_BLOCKS",
+                              "VKRAY_DEBUG_PIXEL", "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET",
                               "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64", "VKRAY_OBJECTS"})
         flags.push_back(other);
     return flags;
@@ -137,6 +140,7 @@ std::string describe(const ShaderFeatures& features) {
         for (std::size_t i = 0; i < kGpuShading.size(); ++i)
             if (features.shading[i]) text += std::string("+") + kGpuShading[i].name;
     if (features.objectBvh) text += "+bvh";
+    if (features.blocks) text += "+blocks";
     if (features.debugPixel) text += "+debug-pixel";
     if (features.stressOutput) text += "+stress-output";
     if (features.doubles) text += "+fp64";

@@ -63,6 +63,7 @@ struct ShaderFeatures {
     std::array<bool, kGpuShading.size()> shading{};  // indexed by Shading
     bool lights = true;         // the scene has lights (without, no light code: VKRAY_LIGHTS 0)
     bool objectBvh = false;     // objects found through a BVH
+    bool blocks = false;        // --block > 1: each ray fills a block of pixels (VKRAY_BLOCKS)
     bool debugPixel = false;    // `vkray pixel`: the shader writes a trace record
     bool stressOutput = false;  // `vkray stress`, `vkray pixel`: GpuStressSample per pixel
     bool doubles = false;       // --precision fp64: camera and M^-1 read in double
@@ -85,14 +86,14 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
 Defines definesFor(const ShaderFeatures& features, const Defines& userDefines = {});
 
 // Every flag a variant defines, 0 or 1: the shapes, the shading features,
-// VKRAY_LIGHTS, VKRAY_OBJECT_BVH, VKRAY_DEBUG_PIXEL, VKRAY_STRESS_OUTPUT, the
+// VKRAY_LIGHTS, VKRAY_OBJECT_BVH, VKRAY_BLOCKS, VKRAY_DEBUG_PIXEL, VKRAY_STRESS_OUTPUT, the
 // test hook VKRAY_FAULT_NO_OFFSET and the precision modes' two; and the one
 // count, VKRAY_OBJECTS. The one list; shaders/variant_flags.glsl checks each
 // is defined.
 std::vector<std::string> variantFlags();
 
 // "sphere+cube", "all shapes", "no shapes", then the shading features
-// ("+shadows+reflection", "+all shading"), "+bvh", "+debug-pixel",
+// ("+shadows+reflection", "+all shading"), "+bvh", "+blocks", "+debug-pixel",
 // "+stress-output" and "+fp64".
 std::string describe(const ShaderFeatures& features);
 

@@ -348,16 +348,16 @@ void TracePass::submit(Slot& s, bool first) {
     const vk::raii::CommandBuffer& commands = s.commands;
     commands.reset();
     commands.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-    if (!first) {
-        // The rays go on from the progress and pending rays the tile's
-        // previous dispatch wrote: its writes must be visible to this one.
-        vk::MemoryBarrier resumed(
-            vk::AccessFlagBits::eShaderWrite,
-            vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
-        commands.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
-                                 vk::PipelineStageFlagBits::eComputeShader, {}, resumed, nullptr,
-                                 nullptr);
-    }
+    // A resumed tile reads the progress and pending rays its previous
+    // dispatch wrote, and any dispatch overwrites what the slot's last one
+    // wrote: those writes must be visible to this one (the fence orders the
+    // host's reads only).
+    const vk::MemoryBarrier previous(
+        vk::AccessFlagBits::eShaderWrite,
+        vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+    commands.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
+                             vk::PipelineStageFlagBits::eComputeShader, {}, previous, nullptr,
+                             nullptr);
     commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.compute.pipeline);
     commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.compute.layout, 0,
                                 *s.descriptors->set, nullptr);
@@ -365,7 +365,9 @@ void TracePass::submit(Slot& s, bool first) {
                                        0, s.params);
     if (*s.timestamps) {
         commands.resetQueryPool(*s.timestamps, 0, 2);
-        commands.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *s.timestamps, 0);
+        // Written once earlier dispatches (the other slot's) are done with
+        // the compute stage, so that no two tiles' intervals overlap.
+        commands.writeTimestamp(vk::PipelineStageFlagBits::eComputeShader, *s.timestamps, 0);
     }
     commands.dispatch(s.groupsX, s.groupsY, 1);
     if (*s.timestamps)

@@ -189,8 +189,20 @@ TEST(ShaderVariant, AntialiasingWithMoreThanOneSample) {
 
 TEST(ShaderVariant, AllFeaturesCompilesEverythingIn) {
     const ShaderFeatures all = featuresOf(parseSdl("sphere", "t.sdl", {}), {}, true);
-    EXPECT_EQ(describe(all), "all shapes+all shading");
+    EXPECT_EQ(describe(all), "all shapes+all shading+blocks");
     for (const GpuShading& shading : kGpuShading) EXPECT_TRUE(hasDefine(all, shading.define));
+    EXPECT_TRUE(hasDefine(all, "VKRAY_BLOCKS"));
+}
+
+TEST(ShaderVariant, BlocksWithABlockOfMoreThanOnePixel) {
+    // A block's fill is a loop, whose first turn llvmpipe runs even when no
+    // lane needs it: a render of one ray a pixel leaves it out.
+    const Scene scene = parseSdl("sphere", "t.sdl", {});
+    EXPECT_FALSE(featuresOf(scene, {64, 48, 1}, false).blocks);
+    const ShaderFeatures blocks = featuresOf(scene, {64, 48, 4}, false);
+    EXPECT_TRUE(blocks.blocks);
+    EXPECT_TRUE(hasDefine(blocks, "VKRAY_BLOCKS"));
+    EXPECT_EQ(describe(blocks), "sphere+blocks");
 }
 
 TEST(ShaderVariant, ShadersCheckCoversEachShadingFeatureAndTheirMix) {
