@@ -310,6 +310,14 @@ struct Experiment {
 // The scene as the benchmark traces it. Primary rays only (default): no
 // lights, so no shadow feelers, and no reflected or refracted rays; every
 // engine then traces exactly the same rays (Embree finds closest hits only).
+// What every engine writes of a w x h frame: each pixel's colour and object
+// id, as `vkray render` does without --aov (the ids prove the same hits).
+RenderSettings imageOf(int width, int height) {
+    RenderSettings settings{width, height, 1};
+    settings.aovs = false;
+    return settings;
+}
+
 Scene sceneToTrace(const BenchScene& bench, bool shaded) {
     Scene scene = bench.make();
     if (!shaded) {
@@ -362,7 +370,7 @@ void runExperiments(const Options& o, gpu::Context& context) {
         const Scene scene = sceneToTrace(bs, o.shaded);
         const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
         const CameraBasis basis = makeCameraBasis(camera, o.width, o.height);
-        const RenderSettings settings{o.width, o.height, 1};
+        const RenderSettings settings = imageOf(o.width, o.height);
         std::vector<std::unique_ptr<gpu::GpuTracer>> tracers;
         std::vector<Frame> reference;
         for (const Experiment& e : experiments) {
@@ -427,7 +435,8 @@ int main(int argc, char** argv) {
             o.width, o.height, o.repeat, o.threads, o.tile, shaders.c_str());
         std::printf(
             "%s; GPU: the dispatch loop with read-back; CPU reference: the whole render "
-            "(less allocating the frame); both shade each hit (ambient, emissive%s); Embree: "
+            "(less allocating the frame); both shade each hit (ambient, emissive%s) and write "
+            "its colour and object id (`vkray render` without --aov); Embree: "
             "closest hit only (rtcIntersect1, rtcIntersect8 on 4x2 pixels)\n",
             o.shaded ? "shaded (--shaded): lights, shadow feelers and secondary rays as the "
                        "scenes say"
@@ -450,7 +459,7 @@ int main(int argc, char** argv) {
         for (const BenchScene& bs : o.scenes) {
             const Scene scene = sceneToTrace(bs, o.shaded);
             const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
-            const RenderSettings settings{o.width, o.height, 1};
+            const RenderSettings settings = imageOf(o.width, o.height);
             const CameraBasis basis = makeCameraBasis(camera, o.width, o.height);
             Row row;
             row.name = bs.name;
@@ -464,7 +473,7 @@ int main(int argc, char** argv) {
             const auto gpuTiming = [&](gpu::GpuTracer& tracer, bool all, const RenderSettings& size,
                                        int repeat, Frame* keep) {
                 const CameraBasis sized = makeCameraBasis(camera, size.width, size.height);
-                tracer.render(scene, makeCameraBasis(camera, 64, 36), {64, 36, 1});
+                tracer.render(scene, makeCameraBasis(camera, 64, 36), imageOf(64, 36));
                 Timing best;
                 for (int r = 0; r < repeat; ++r) {
                     gpu::GpuRenderStats stats;
@@ -486,7 +495,7 @@ int main(int argc, char** argv) {
             // (BENCHMARKS.md): --all-size times it on a smaller image of the
             // same view, beside the specialised variant on that image.
             if (o.all) {
-                const RenderSettings small{o.allWidth, o.allHeight, 1};
+                const RenderSettings small = imageOf(o.allWidth, o.allHeight);
                 row.time[kAllFeatures] = gpuTiming(allFeatures, true, small, o.repeat, nullptr);
                 row.smallGpu = small.width == o.width && small.height == o.height
                                    ? row.time[kGpu]
@@ -596,7 +605,7 @@ int main(int argc, char** argv) {
                 for (int k = 0; k < 2; ++k) {
                     const Scene scene = bench::missedSpheres(k == 0 ? 1 : 8);
                     const CameraBasis basis = makeCameraBasis(*scene.camera, o.width, o.height);
-                    const RenderSettings settings{o.width, o.height, 1};
+                    const RenderSettings settings = imageOf(o.width, o.height);
                     gpu::GpuRenderStats st;
                     specialised.render(scene, basis, settings, &st);
                     if (r > 0) time[k].keepBest({st.renderSeconds, st.renderCpuSeconds});

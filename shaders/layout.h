@@ -270,10 +270,13 @@ struct GpuRayTask {
     vec4 speeds;     // speeds of light of the media it is inside, innermost last
 };
 
-// One pixel of the output tile.
+// One pixel of the output tile. The AOV texel (`normal`) is written only by
+// variants that were asked for it (VKRAY_AOVS): on llvmpipe each word a
+// shader stores costs a loop over its 8 lanes.
 struct GpuPixel {
-    vec4 color;   // rgb radiance (unclamped); w = depth (distance along the unit ray, +inf on a miss)
-    vec4 normal;  // xyz world unit normal facing the ray; w = object id (int bits; -1 = background)
+    vec4 color;   // rgb radiance (unclamped); w = object id (int bits; -1 = background)
+    vec4 normal;  // xyz world unit normal facing the ray; w = depth (distance along the unit
+                  // ray, +inf on a miss)
 };
 
 // The stress-output variant (VKRAY_STRESS_OUTPUT; `vkray stress`, `vkray

@@ -79,7 +79,7 @@ void absorb(uvec2 at) {
     if (params.mode.z != 0u) {
         aovs[i].color = color;
         aovs[i].normal = tile[t].normal;
-        float depth = color.w;
+        float depth = tile[t].normal.w;
         if (!isinf(depth) && !isnan(depth)) {
             atomicMin(depthRange.x, floatBitsToUint(max(depth, 0.0)));
             atomicMax(depthRange.y, floatBitsToUint(max(depth, 0.0)));
@@ -90,14 +90,15 @@ void absorb(uvec2 at) {
 void compose(uvec2 pixel) {
     uint i = pixel.y * params.rect.z + pixel.x;
     bool fromCpu = params.mode.z != 0u;
-    vec4 sample0 = fromCpu ? cpu[i].color : aovs[i].color;  // w: depth
-    vec4 normal = fromCpu ? cpu[i].normal : aovs[i].normal;  // w: object id
+    vec4 sample0 = fromCpu ? cpu[i].color : aovs[i].color;  // w: object id
+    vec4 normal = fromCpu ? cpu[i].normal : aovs[i].normal;  // w: depth
     vec3 color = fromCpu ? sample0.rgb : sums[i].rgb / sums[i].w;
+    int id = floatBitsToInt(sample0.w);
     vec3 shown;
     switch (params.mode.y) {
-    case VIEW_DEPTH: shown = depthColor(sample0.w, params.range.x, params.range.y); break;
-    case VIEW_NORMAL: shown = floatBitsToInt(normal.w) < 0 ? vec3(0.0) : 0.5 + 0.5 * normal.xyz; break;
-    case VIEW_OBJECT_ID: shown = idColor(floatBitsToInt(normal.w)); break;
+    case VIEW_DEPTH: shown = depthColor(normal.w, params.range.x, params.range.y); break;
+    case VIEW_NORMAL: shown = id < 0 ? vec3(0.0) : 0.5 + 0.5 * normal.xyz; break;
+    case VIEW_OBJECT_ID: shown = idColor(id); break;
     case VIEW_DIFFERENCE: shown = heat(sums[i].rgb / sums[i].w, cpu[i].color.rgb, params.range.z); break;
     default: shown = color; break;
     }

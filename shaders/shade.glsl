@@ -280,9 +280,12 @@ uint nextFacingLight(uint i, GpuMaterial object, Surface s, vec3 v, vec3 k, bool
 // stop is taken at the end of the turn that finished the work, never at the
 // start of an extra one. A dispatch stops only between two rays, when all
 // that is pending is on the stack, so a paused sample goes on as if it had
-// never stopped: the image does not depend on the budget. Sample 0's
-// primary hit gives the AOVs, written to pixel `firstPixel`.
-void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint budget) {
+// never stopped: the image does not depend on the budget. When this
+// dispatch traced sample 0's primary ray, aovFound is true and `aov` holds
+// the pixel's object id and AOVs (its colour 0); `firstPixel` is the pixel
+// of the stress output.
+void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint budget,
+                  out bool aovFound, out GpuPixel aov) {
     uint sampleIndex = floatBitsToUint(ray.sum.w);
     uint top = floatBitsToUint(ray.color.w);
     vec3 sum = ray.sum.rgb, color = ray.color.rgb;
@@ -301,9 +304,8 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
     vec3 k;
     const uint lightCount = frame.counts.x;
     uint light = lightCount;
-    // Sample 0's primary hit (the AOVs), written once after the loop.
-    bool aovFound = false;
-    GpuPixel aov;
+    // Sample 0's primary hit (the AOVs), for main() to write.
+    aovFound = false;
     while (true) {
         ++loopTurns;
         // This turn's walk: the feeler toward the next facing light, or the next ray.
@@ -347,8 +349,8 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
                 debugDirection = task.direction;
 #endif
                 aovFound = true;
-                aov = GpuPixel(vec4(0.0, 0.0, 0.0, float(hit.t)),
-                               vec4(0.0, 0.0, 0.0, intBitsToFloat(hit.object)));
+                aov = GpuPixel(vec4(0.0, 0.0, 0.0, intBitsToFloat(hit.object)),
+                               vec4(0.0, 0.0, 0.0, float(hit.t)));
             }
             if (hit.object < 0) {
                 color += task.weight * frame.background.rgb;
@@ -418,6 +420,5 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
             if (loopTurns >= budget) break;
         }
     }
-    if (aovFound) storePixel(firstPixel, aov);  // its colour is main()'s to write
     ray = GpuRayProgress(vec4(sum, uintBitsToFloat(sampleIndex)), vec4(color, uintBitsToFloat(top)));
 }

@@ -38,7 +38,13 @@ layout(std140, set = 0, binding = BINDING_FRAME) uniform FrameBlock { FrameParam
 // vector loads or stores under the lane mask, where a storage-buffer access
 // inside an if or a loop is a scalar loop over the 8 lanes (docs/lavapipe.md).
 layout(set = 0, binding = BINDING_PIXELS, rgba32ui) uniform uimageBuffer pixelTexels;
+// A ray pauses only where an invocation may walk the scene more than once: a
+// variant of one walk a pixel (a primary ray, no feelers, no secondary rays,
+// one sample) finishes every ray in one dispatch and keeps no progress.
+#define VKRAY_ONE_WALK (!VKRAY_SHADOWS && !VKRAY_REFLECTION && !VKRAY_REFRACTION && !VKRAY_ANTIALIAS)
+#if !VKRAY_ONE_WALK
 layout(set = 0, binding = BINDING_PROGRESS, rgba32ui) uniform uimageBuffer progressTexels;
+#endif
 layout(std430, set = 0, binding = BINDING_STATUS) buffer StatusBlock { GpuDispatchStatus status; };
 layout(push_constant) uniform TileBlock { TileParams tileBlock; };
 #if VKRAY_DEBUG_PIXEL
@@ -67,12 +73,17 @@ GpuPixel loadPixel(uint index) {
                     texelAsVec4(imageLoad(pixelTexels, first + 1)));
 }
 
+// On llvmpipe every 32-bit word stored costs a loop over the 8 lanes: the
+// AOV texel is written only when the host asked for it (VKRAY_AOVS).
 void storePixel(uint index, GpuPixel pixel) {
     int first = int(index * PIXEL_TEXELS);
     imageStore(pixelTexels, first, floatBitsToUint(pixel.color));
+#if VKRAY_AOVS
     imageStore(pixelTexels, first + 1, floatBitsToUint(pixel.normal));
+#endif
 }
 
+#if !VKRAY_ONE_WALK
 GpuRayProgress loadProgress(uint index) {
     int first = int(index * RAY_PROGRESS_TEXELS);
     return GpuRayProgress(texelAsVec4(imageLoad(progressTexels, first)),
@@ -84,6 +95,7 @@ void storeProgress(uint index, GpuRayProgress ray) {
     imageStore(progressTexels, first, floatBitsToUint(ray.sum));
     imageStore(progressTexels, first + 1, floatBitsToUint(ray.color));
 }
+#endif
 
 const float INFINITY = 1.0 / 0.0;
 
@@ -282,7 +294,7 @@ void recordDebug(GpuPixel result) {
     debugHeader.rayOrigin = vec4(origin, 0.0);
     debugHeader.rayDirection = vec4(debugDirection, 0.0);
     debugHeader.hitPoint = vec4(p, debugHit.t);
-    debugHeader.normal = result.normal;
+    debugHeader.normal = vec4(result.normal.xyz, result.color.w);
     debugHeader.emissive = vec4(hitSomething ? object.emissive.rgb : vec3(0.0), 0.0);
     debugHeader.ambient = vec4(
         hitSomething ? debugTexture * object.ambient.rgb * frame.globalAmbient.rgb : vec3(0.0), 0.0);
@@ -290,6 +302,19 @@ void recordDebug(GpuPixel result) {
     debugHeader.counts = uvec4(frame.image.w, hitSomething ? frame.counts.x : 0u, 0u, 0u);
 }
 #endif
+
+// The pixel of a ray, or (VKRAY_BLOCKS) every pixel of its block clipped to
+// the tile; `first` is the block's first pixel, firstPixel its index.
+void writePixels(uvec2 first, uint firstPixel, uvec2 tileSize, GpuPixel result) {
+#if VKRAY_BLOCKS
+    uvec2 last = min(first + uvec2(frame.image.z), tileSize);
+    for (uint y = first.y; y < last.y; ++y)
+        for (uint x = first.x; x < last.x; ++x)
+            storePixel(y * tileSize.x + x, result);
+#else
+    storePixel(firstPixel, result);  // no loop: its first turn costs, needed or not
+#endif
+}
 
 void main() {
     frame = frameBlock;
@@ -331,33 +356,41 @@ void main() {
     // `vkray view`'s one a pass) go on from where the last dispatch left
     // them. The colour is their mean; the AOVs are those of sample 0.
     uint firstSample = tileParams.samples.x, endSample = tileParams.samples.y;
+    bool aovFound;
+    GpuPixel aov;
+#if VKRAY_ONE_WALK
+    // The pixel's one ray, traced whole in this dispatch: sample 0, whose
+    // hit gives the AOVs, and the colour.
+    GpuRayProgress ray = GpuRayProgress(vec4(0.0, 0.0, 0.0, uintBitsToFloat(firstSample)), vec4(0.0));
+    traceSamples(ray, endSample, firstPixel, tileParams.work.x, aovFound, aov);
+    GpuPixel result = aov;
+    result.color.rgb = ray.sum.rgb;
+    writePixels(first, firstPixel, tileSize, result);
+#if VKRAY_DEBUG_PIXEL
+    recordDebug(result);
+#endif
+#else
     GpuRayProgress ray;
     if (tileParams.work.y != 0u)  // none of its samples finished, none pending
         ray = GpuRayProgress(vec4(0.0, 0.0, 0.0, uintBitsToFloat(firstSample)), vec4(0.0));
     else
         ray = loadProgress(rayIndex);
     if (floatBitsToUint(ray.sum.w) < endSample) {
-        traceSamples(ray, endSample, firstPixel, tileParams.work.x);
+        traceSamples(ray, endSample, firstPixel, tileParams.work.x, aovFound, aov);
         storeProgress(rayIndex, ray);
-        if (floatBitsToUint(ray.sum.w) < endSample) {
-            atomicAdd(status.counts.x, 1u);
-        } else {
-            GpuPixel result = loadPixel(firstPixel);
-            result.color.rgb = ray.sum.rgb / float(endSample - firstSample);
-#if VKRAY_BLOCKS
-            // Fill the block (clipped to the tile).
-            uvec2 last = min(first + uvec2(block), tileSize);
-            for (uint y = first.y; y < last.y; ++y)
-                for (uint x = first.x; x < last.x; ++x)
-                    storePixel(y * tileSize.x + x, result);
-#else
-            storePixel(firstPixel, result);  // no loop: its first turn costs, needed or not
-#endif
+        bool done = floatBitsToUint(ray.sum.w) >= endSample;
+        if (!done) atomicAdd(status.counts.x, 1u);
+        // Sample 0's AOVs, from this dispatch or the one that traced it;
+        // written when found (the pixel's colour still 0 if the ray pauses)
+        // and again with the colour once the ray is done.
+        GpuPixel result = aovFound ? aov : loadPixel(firstPixel);
+        if (done) result.color.rgb = ray.sum.rgb / float(endSample - firstSample);
+        if (done || aovFound) writePixels(first, firstPixel, tileSize, result);
 #if VKRAY_DEBUG_PIXEL
-            recordDebug(result);
+        if (done) recordDebug(result);
 #endif
-        }
     }
+#endif
 
     // The canary: a loop of work.z turns (a push constant, so that no
     // compiler can unroll it) runs short only if the driver's loop limit

@@ -21,8 +21,8 @@
 #if !defined(VKRAY_LIGHTS) || !defined(VKRAY_OBJECT_BVH) || !defined(VKRAY_DEBUG_PIXEL)
 #error "VKRAY_LIGHTS, VKRAY_OBJECT_BVH or VKRAY_DEBUG_PIXEL is not defined: the host defines every variant flag, 0 or 1"
 #endif
-#if !defined(VKRAY_STRESS_OUTPUT) || !defined(VKRAY_BLOCKS)
-#error "VKRAY_STRESS_OUTPUT or VKRAY_BLOCKS is not defined: the host defines every variant flag, 0 or 1"
+#if !defined(VKRAY_STRESS_OUTPUT) || !defined(VKRAY_BLOCKS) || !defined(VKRAY_AOVS)
+#error "VKRAY_STRESS_OUTPUT, VKRAY_BLOCKS or VKRAY_AOVS is not defined: the host defines every variant flag, 0 or 1"
 #endif
 #if !defined(VKRAY_PRECISION_NAIVE) || !defined(VKRAY_PRECISION_FP64) || !defined(VKRAY_FAULT_NO_OFFSET)
 #error "VKRAY_PRECISION_NAIVE, VKRAY_PRECISION_FP64 or VKRAY_FAULT_NO_OFFSET is not defined: the host defines every variant flag, 0 or 1"

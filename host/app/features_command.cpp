@@ -13,6 +13,7 @@ int runFeatures(const Options& o, std::ostream& out, std::ostream& err) {
     const Scene scene = loadSceneFor(o, err);
     RenderSettings settings;
     settings.spp = o.spp;
+    settings.aovs = false;  // as `render` without --aov
     const gpu::ShaderFeatures features =
         gpu::variantFeatures(scene, settings, o.allFeatures, o.precision);
     const gpu::ShaderSource source =

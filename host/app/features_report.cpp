@@ -184,8 +184,14 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     out << "maxRecursionDepth: " << scene.maxRecursionDepth << "\n";
     out << "samples: " << settings.spp << " per pixel"
         << (settings.spp > 1 ? " (antialiasing)" : " (pixel centres, no antialiasing)") << "\n";
-    // Every variant writes the three AOVs: 20 of a pixel's 32 bytes, no extra rays.
-    out << "AOVs: depth, normal, object id (every variant computes them; --aov writes them)\n";
+    // The object id always; depth and normal only where asked for (GpuPixel).
+    gpu::ShaderFeatures withAovs = features;
+    withAovs.aovs = true;
+    out << "AOVs: object id" << (features.aovs ? ", depth, normal" : "")
+        << (features.aovs
+                ? ""
+                : "; depth and normal with render --aov (variant " + gpu::describe(withAovs) + ")")
+        << "\n";
     out << "precision: " << precisionName(precision)
         << (precision == Precision::Fp64 ? " (double in the shader" : " (float in the shader")
         << "; the CPU reference is double)\n";

@@ -134,7 +134,8 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
     if (!o.dumpSpirvDirectory.empty())
         requireWritableFolder((fs::path(o.dumpSpirvDirectory) / "x").string(), "--dump-spirv");
 
-    const RenderSettings settings{o.width, o.height, o.block, o.spp, o.seed};
+    RenderSettings settings{o.width, o.height, o.block, o.spp, o.seed};
+    settings.aovs = !o.aovPrefix.empty();  // the object id is always there (--check compares it)
     const CameraBasis camera = makeCameraBasis(chooseCamera(scene, o), o.width, o.height);
     out << "scene: " << o.scenePath << " (" << scene.objects.size() << " objects, "
         << scene.lights.size() << " lights), " << o.width << "x" << o.height

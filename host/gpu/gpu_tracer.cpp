@@ -169,7 +169,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     // Per pixel at most (a ray per pixel): its pixel, progress and pending rays.
     const bool rayStack = features.has(Shading::Reflection) || features.has(Shading::Refraction);
     const size_t pixelBytes =
-        sizeof(GpuPixel) + sizeof(GpuRayProgress) +
+        sizeof(GpuPixel) + (tracesOneWalk(features) ? 0 : sizeof(GpuRayProgress)) +
         (features.stressOutput ? sizeof(GpuStressSample) : 0) +
         (rayStack ? size_t(pendingRayEntries(scene)) *
                         (features.doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask))
@@ -203,16 +203,18 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
         const int tx = piece.x, ty = piece.y, w = piece.width, h = piece.height;
         if (tileListener_) tileListener_(TracedTile{piece, pass.pixelBuffer(slot)});
         const GpuPixel* pixels = pass.pixels(slot);
-        const bool aovs = settings.firstSample == 0;  // sample 0 traced
+        const bool sample0 = settings.firstSample == 0;  // the id and AOVs were traced
         for (int y = 0; y < h; ++y) {
             for (int x = 0; x < w; ++x) {
                 const GpuPixel& p = pixels[size_t(y) * size_t(w) + size_t(x)];
                 const size_t i = frame.index(tx + x, ty + y);
                 frame.color[i] = {p.color.x, p.color.y, p.color.z};
-                if (!aovs) continue;
-                frame.depth[i] = p.color.w;
-                frame.normal[i] = {p.normal.x, p.normal.y, p.normal.z};
-                std::memcpy(&frame.id[i], &p.normal.w, sizeof(std::int32_t));
+                if (!sample0) continue;
+                std::memcpy(&frame.id[i], &p.color.w, sizeof(std::int32_t));
+                if (features.aovs) {
+                    frame.depth[i] = p.normal.w;
+                    frame.normal[i] = {p.normal.x, p.normal.y, p.normal.z};
+                }
                 if (stressSamples)
                     (*stressSamples)[i] = decodeStressSample(
                         pass.stressSamples(slot)[size_t(y) * size_t(w) + size_t(x)],

@@ -46,9 +46,9 @@ std::vector<float> byteThresholds() {
 
 GpuPixel toGpuPixel(const Frame& frame, size_t i) {
     GpuPixel p{};
-    p.color = {frame.color[i].x, frame.color[i].y, frame.color[i].z, frame.depth[i]};
-    p.normal = {frame.normal[i].x, frame.normal[i].y, frame.normal[i].z, 0};
-    std::memcpy(&p.normal.w, &frame.id[i], sizeof(std::int32_t));
+    p.color = {frame.color[i].x, frame.color[i].y, frame.color[i].z, 0};
+    std::memcpy(&p.color.w, &frame.id[i], sizeof(std::int32_t));
+    p.normal = {frame.normal[i].x, frame.normal[i].y, frame.normal[i].z, frame.depth[i]};
     return p;
 }
 
@@ -227,7 +227,7 @@ Presenter::Presenter(Context& context, const std::string& shaderDirectory,
     const Frame empty(width, height);
     std::vector<GpuPixel> misses(s.pixels);
     for (size_t i = 0; i < s.pixels; ++i) misses[i] = toGpuPixel(empty, i);
-    for (GpuPixel& p : misses) p.color.w = std::numeric_limits<float>::infinity();
+    for (GpuPixel& p : misses) p.normal.w = std::numeric_limits<float>::infinity();
     s.aovs.upload(misses.data(), sizeof(GpuPixel) * s.pixels);
     s.cpu.upload(misses.data(), sizeof(GpuPixel) * s.pixels);
     const std::vector<float> thresholds = byteThresholds();

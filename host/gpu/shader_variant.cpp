@@ -60,8 +60,14 @@ bool canShadow(const Scene& scene) {
 
 }  // namespace
 
+bool tracesOneWalk(const ShaderFeatures& f) {
+    return !f.has(Shading::Shadows) && !f.has(Shading::Reflection) && !f.has(Shading::Refraction) &&
+           !f.has(Shading::Antialias);
+}
+
 ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bool allFeatures) {
     ShaderFeatures features;
+    features.aovs = settings.aovs;
     for (const SceneObject& object : scene.objects) addObject(scene, object, features);
     features.shading[size_t(Shading::Shadows)] = canShadow(scene);
     features.lights = !scene.lights.empty() || allFeatures;
@@ -102,6 +108,7 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines) {
     defines.emplace_back("VKRAY_LIGHTS", flag(features.lights || features.has(Shading::Shadows)));
     defines.emplace_back("VKRAY_OBJECT_BVH", flag(features.objectBvh));
     defines.emplace_back("VKRAY_BLOCKS", flag(features.blocks));
+    defines.emplace_back("VKRAY_AOVS", flag(features.aovs));
     defines.emplace_back("VKRAY_DEBUG_PIXEL", flag(features.debugPixel));
     defines.emplace_back("VKRAY_STRESS_OUTPUT", flag(features.stressOutput));
     defines.emplace_back("VKRAY_OBJECTS", std::to_string(features.unrolledObjects));
@@ -115,7 +122,7 @@ std::vector<std::string> variantFlags() {
     std::vector<std::string> flags;
     for (const GpuKind& kind : kGpuKinds) flags.push_back(kind.define);
     for (const GpuShading& shading : kGpuShading) flags.push_back(shading.define);
-    for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_BLOCKS",
+    for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_BLOCKS", "VKRAY_AOVS",
                               "VKRAY_DEBUG_PIXEL", "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET",
                               "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64", "VKRAY_OBJECTS"})
         flags.push_back(other);
@@ -141,6 +148,7 @@ std::string describe(const ShaderFeatures& features) {
             if (features.shading[i]) text += std::string("+") + kGpuShading[i].name;
     if (features.objectBvh) text += "+bvh";
     if (features.blocks) text += "+blocks";
+    if (features.aovs) text += "+aovs";
     if (features.debugPixel) text += "+debug-pixel";
     if (features.stressOutput) text += "+stress-output";
     if (features.doubles) text += "+fp64";
@@ -157,7 +165,7 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
     if (features.lights || features.has(Shading::Shadows))
         bindings.push_back({BINDING_LIGHTS, "lights", Texels});
     bindings.push_back({BINDING_PIXELS, "pixels", Texels});
-    bindings.push_back({BINDING_PROGRESS, "ray progress", Texels});
+    if (!tracesOneWalk(features)) bindings.push_back({BINDING_PROGRESS, "ray progress", Texels});
     bindings.push_back({BINDING_STATUS, "dispatch status", Storage});
     if (features.has(Shading::Reflection) || features.has(Shading::Refraction))
         bindings.push_back({BINDING_RAY_STACK, "pending rays", Texels});
@@ -219,6 +227,13 @@ std::vector<ShaderFeatures> allVariants(bool everyCombination) {
         for (unsigned kind = 0; kind < kinds; ++kind) add(1u << kind, shading, false);
     }
     add(allKinds, allShading, true);
+    // `vkray render` without --aov: no depth and normal, with one walk a
+    // pixel and with everything.
+    for (unsigned shading : {0u, allShading}) {
+        add(allKinds, shading, false);
+        for (std::size_t i = variants.size() - 2; i < variants.size(); ++i)
+            variants[i].aovs = false;
+    }
     // `vkray stress` and `vkray pixel`: the stress output with everything.
     ShaderFeatures stress;
     stress.kinds.fill(true);

@@ -64,6 +64,7 @@ struct ShaderFeatures {
     bool lights = true;         // the scene has lights (without, no light code: VKRAY_LIGHTS 0)
     bool objectBvh = false;     // objects found through a BVH
     bool blocks = false;        // --block > 1: each ray fills a block of pixels (VKRAY_BLOCKS)
+    bool aovs = true;           // each pixel's depth and normal are written (VKRAY_AOVS)
     bool debugPixel = false;    // `vkray pixel`: the shader writes a trace record
     bool stressOutput = false;  // `vkray stress`, `vkray pixel`: GpuStressSample per pixel
     bool doubles = false;       // --precision fp64: camera and M^-1 read in double
@@ -76,6 +77,11 @@ struct ShaderFeatures {
     bool operator==(const ShaderFeatures&) const = default;
 };
 
+// Whether each invocation walks the scene once: one primary ray a pixel, no
+// feelers, no secondary rays. Its rays never pause, so the variant keeps no
+// progress between dispatches (trace.comp's VKRAY_ONE_WALK, the same test).
+bool tracesOneWalk(const ShaderFeatures& features);
+
 // The features `scene` rendered with `settings` needs (every shape kind and
 // shading feature when allFeatures; the object BVH is a property of the
 // scene's size, so it stays as needed).
@@ -86,14 +92,15 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
 Defines definesFor(const ShaderFeatures& features, const Defines& userDefines = {});
 
 // Every flag a variant defines, 0 or 1: the shapes, the shading features,
-// VKRAY_LIGHTS, VKRAY_OBJECT_BVH, VKRAY_BLOCKS, VKRAY_DEBUG_PIXEL, VKRAY_STRESS_OUTPUT, the
+// VKRAY_LIGHTS, VKRAY_OBJECT_BVH, VKRAY_BLOCKS, VKRAY_AOVS, VKRAY_DEBUG_PIXEL,
+// VKRAY_STRESS_OUTPUT, the
 // test hook VKRAY_FAULT_NO_OFFSET and the precision modes' two; and the one
 // count, VKRAY_OBJECTS. The one list; shaders/variant_flags.glsl checks each
 // is defined.
 std::vector<std::string> variantFlags();
 
 // "sphere+cube", "all shapes", "no shapes", then the shading features
-// ("+shadows+reflection", "+all shading"), "+bvh", "+blocks", "+debug-pixel",
+// ("+shadows+reflection", "+all shading"), "+bvh", "+blocks", "+aovs", "+debug-pixel",
 // "+stress-output" and "+fp64".
 std::string describe(const ShaderFeatures& features);
 
@@ -121,8 +128,10 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features);
 // the shading features, whose code calls every shape's: each alone and all
 // together with all shapes, and all together with each kind alone and with
 // the debug-pixel record; with --all, every combination of them with all
-// shapes and with each kind alone. Last, the stress output with everything,
-// with and without the debug-pixel record (144 in all; --all: 1,668).
+// shapes and with each kind alone. Then all shapes without the AOV texel,
+// with no shading and with all of it. Last, the stress output with
+// everything, with and without the debug-pixel record (148 in all; --all:
+// 1,672).
 std::vector<ShaderFeatures> allVariants(bool everyCombination = false);
 
 }  // namespace vkray::gpu

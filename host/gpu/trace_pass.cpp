@@ -69,8 +69,9 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     for (size_t slot = 0; slot < slots; ++slot) {
         needs.push_back({"tile pixels", tilePixels, sizeof(GpuPixel), false,
                          "Use a smaller --block", sizeof(uvec4)});
-        needs.push_back({"ray progress", tileRays, sizeof(GpuRayProgress), false,
-                         "Use a smaller --block", sizeof(uvec4)});
+        if (kinds.count(BINDING_PROGRESS))
+            needs.push_back({"ray progress", tileRays, sizeof(GpuRayProgress), false,
+                             "Use a smaller --block", sizeof(uvec4)});
         if (pendingRays > 0)
             needs.push_back({"pending rays", pendingRays,
                              doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask), false,
@@ -218,7 +219,8 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
     if (kinds_.count(BINDING_LIGHTS)) add(BINDING_LIGHTS, packed.lights);
     for (int s = 0; s < int(slots_.size()); ++s) {
         add(BINDING_PIXELS, std::vector<GpuPixel>(size_t(tile) * size_t(tile)), s);
-        allocate(BINDING_PROGRESS, sizeof(GpuRayProgress) * tileRays, s);
+        if (kinds_.count(BINDING_PROGRESS))
+            allocate(BINDING_PROGRESS, sizeof(GpuRayProgress) * tileRays, s);
         add(BINDING_STATUS, std::vector<GpuDispatchStatus>(1), s);
         if (rayStack)
             allocate(BINDING_RAY_STACK,

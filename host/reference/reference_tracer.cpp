@@ -65,9 +65,10 @@ void renderBlockRow(const WhittedShader& shader, const CameraBasis& camera,
             for (int x = x0; x < x1; ++x) {
                 const size_t i = frame.index(x, y);
                 frame.color[i] = value.color;
+                frame.id[i] = value.id;
+                if (!settings.aovs) continue;  // as Frame() made them
                 frame.depth[i] = value.depth;
                 frame.normal[i] = value.normal;
-                frame.id[i] = value.id;
             }
         }
     }

@@ -29,6 +29,11 @@ struct RenderSettings {
     // them. `vkray view` traces one sample a pass and sums the passes.
     int firstSample = 0;
     int sampleCount = 0;
+    // Whether the renderer writes each pixel's depth and normal (sample 0's
+    // AOVs; the object id is always written). Without, they stay as Frame()
+    // made them: a GPU variant that leaves them out stores a quarter of the
+    // words a ray would otherwise (shaders/layout.h, GpuPixel).
+    bool aovs = true;
 };
 inline constexpr int kMaxSpp = 4096;
 

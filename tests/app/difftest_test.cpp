@@ -61,9 +61,9 @@ TEST_F(Difftest, OverTheBoundAtItsSizeButWithinItAt160x120IsReportedApart) {
     // ray; at 160x120 two pixels are 0.01 %, within render --check's 0.1 %.
     const fs::path shaders = shadersWith(
         dir, "trace.comp",
-        {{"            result.color.rgb = ray.sum.rgb / float(endSample - firstSample);\n",
-          "            result.color.rgb = ray.sum.rgb / float(endSample - firstSample);\n"
-          "            if (rayPixel.y == 0u && rayPixel.x < 2u) result.color.rgb = "
+        {{"void writePixels(uvec2 first, uint firstPixel, uvec2 tileSize, GpuPixel result) {\n",
+          "void writePixels(uvec2 first, uint firstPixel, uvec2 tileSize, GpuPixel result) {\n"
+          "    if (rayPixel.y == 0u && rayPixel.x < 2u) result.color.rgb = "
           "step(result.color.rgb, vec3(0.5));\n"}});
     RunResult run = vkray("difftest --scenes 1 --seed 101 --precision robust --shader-dir " +
                           shaders.string() + " --out " + path("found"));

@@ -54,6 +54,9 @@ TEST_F(Features, DefaultSceneReport) {
     EXPECT_EQ(field(run.output, "reflection"),
               "no (no object has reflectivity > minReflectivity 0.5 (highest 0))");
     EXPECT_EQ(field(run.output, "variant"), "sphere+plane+square+cube+shadows");
+    EXPECT_EQ(field(run.output, "AOVs"),
+              "object id; depth and normal with render --aov (variant "
+              "sphere+plane+square+cube+shadows+aovs)");
     EXPECT_EQ(field(run.output, "defines"),
               "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_SQUARE=1 VKRAY_SHAPE_CUBE=1 "
               "VKRAY_SHADOWS=1 VKRAY_LIGHTS=1 VKRAY_OBJECTS=5 (every other variant flag 0)");

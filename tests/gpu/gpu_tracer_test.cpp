@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -223,6 +224,48 @@ TEST(GpuTracer, DeviceTimeOfTheDispatchesLiesWithinTheRender) {
     EXPECT_EQ(stats.dispatches, 12u);
     EXPECT_GT(*stats.deviceSeconds, 0.0);
     EXPECT_LE(*stats.deviceSeconds, stats.renderSeconds);
+}
+
+// A render without AOVs (`vkray render` without --aov) writes the colour
+// and the object id of a render with them, byte for byte, and leaves depth
+// and normal as Frame() made them: for one walk a pixel, for blocks, and for
+// rays that pause between dispatches (feelers, a mirror, several samples).
+TEST(GpuTracer, WithoutAovsTheColourAndIdsAreThoseOfARenderWithThem) {
+    const char* const scenes[] = {
+        "push translate 0.3 0 0 sphere pop cube",
+        "light 4 4 4 1 1 1 reflectivity 0.7 push translate 0.3 0 0 sphere pop cube",
+    };
+    Camera camera;
+    camera.eye = {3, 4, 5};
+    const CameraBasis basis = makeCameraBasis(camera, 50, 40);
+    const Frame untouched(50, 40);
+    for (const char* sdl : scenes) {
+        const Scene scene = parseSdl(sdl, "aovs.sdl", {});
+        for (RenderSettings settings :
+             {RenderSettings{50, 40, 1}, RenderSettings{50, 40, 3}, RenderSettings{50, 40, 1, 4}}) {
+            // Tiles of 16 and a budget of 8 turns: every ray of the lit
+            // scene pauses, so its pixels are written over several dispatches.
+            gpu::GpuTracer tracer(
+                test::gpuContext(),
+                {.shaderDirectory = test::kShaderDir, .tileSize = 16, .turnBudget = 8});
+            gpu::GpuRenderStats withStats, withoutStats;
+            const Frame with = tracer.render(scene, basis, settings, &withStats);
+            settings.aovs = false;
+            const Frame without = tracer.render(scene, basis, settings, &withoutStats);
+            const std::string what = std::string(sdl) + ", block " +
+                                     std::to_string(settings.block) + ", spp " +
+                                     std::to_string(settings.spp);
+            EXPECT_EQ(with.color, without.color) << what;
+            EXPECT_EQ(with.id, without.id) << what;
+            EXPECT_NE(std::count(with.id.begin(), with.id.end(), -1), 2000) << what;
+            EXPECT_EQ(without.depth, untouched.depth) << what;
+            EXPECT_EQ(without.normal, untouched.normal) << what;
+            EXPECT_NE(with.depth, untouched.depth) << what;
+            EXPECT_EQ(withStats.variant.find("+aovs") != std::string::npos, true) << what;
+            EXPECT_EQ(withoutStats.variant.find("+aovs"), std::string::npos) << what;
+            EXPECT_EQ(withStats.dispatches, withoutStats.dispatches) << what;
+        }
+    }
 }
 
 TEST(GpuTracer, SamplesTracedOneAtATimeSumToTheWholeRender) {

@@ -22,6 +22,7 @@ ShaderFeatures featuresOfText(const std::string& sdl, int spp = 1, bool allFeatu
     const Scene scene = parseSdl(sdl, "t.sdl", {});
     RenderSettings settings;
     settings.spp = spp;
+    settings.aovs = false;  // as `vkray render` without --aov
     return featuresOf(scene, settings, allFeatures);
 }
 
@@ -189,7 +190,7 @@ TEST(ShaderVariant, AntialiasingWithMoreThanOneSample) {
 
 TEST(ShaderVariant, AllFeaturesCompilesEverythingIn) {
     const ShaderFeatures all = featuresOf(parseSdl("sphere", "t.sdl", {}), {}, true);
-    EXPECT_EQ(describe(all), "all shapes+all shading+blocks");
+    EXPECT_EQ(describe(all), "all shapes+all shading+blocks+aovs");
     for (const GpuShading& shading : kGpuShading) EXPECT_TRUE(hasDefine(all, shading.define));
     EXPECT_TRUE(hasDefine(all, "VKRAY_BLOCKS"));
 }
@@ -202,12 +203,51 @@ TEST(ShaderVariant, BlocksWithABlockOfMoreThanOnePixel) {
     const ShaderFeatures blocks = featuresOf(scene, {64, 48, 4}, false);
     EXPECT_TRUE(blocks.blocks);
     EXPECT_TRUE(hasDefine(blocks, "VKRAY_BLOCKS"));
-    EXPECT_EQ(describe(blocks), "sphere+blocks");
+    EXPECT_EQ(describe(blocks), "sphere+blocks+aovs");
+}
+
+TEST(ShaderVariant, DepthAndNormalOnlyWhenAsked) {
+    // Each word a shader stores is a loop over llvmpipe's lanes: the AOV
+    // texel is written only by a variant that was asked for it.
+    const Scene scene = parseSdl("sphere", "t.sdl", {});
+    RenderSettings settings;
+    EXPECT_TRUE(featuresOf(scene, settings, false).aovs);
+    EXPECT_TRUE(hasDefine(featuresOf(scene, settings, false), "VKRAY_AOVS"));
+    settings.aovs = false;
+    const ShaderFeatures colour = featuresOf(scene, settings, false);
+    EXPECT_FALSE(colour.aovs);
+    EXPECT_FALSE(hasDefine(colour, "VKRAY_AOVS"));
+    EXPECT_EQ(describe(colour), "sphere");
+    EXPECT_FALSE(featuresOf(scene, settings, true).aovs);
+}
+
+TEST(ShaderVariant, OnlyVariantsThatWalkMoreThanOnceKeepRayProgress) {
+    const auto keepsProgress = [](const ShaderFeatures& f) {
+        const std::vector<ShaderBinding> bindings = bindingsFor(f);
+        return std::any_of(bindings.begin(), bindings.end(),
+                           [](const ShaderBinding& b) { return b.binding == BINDING_PROGRESS; });
+    };
+    // One primary ray a pixel and nothing after it: every ray is done in
+    // its first dispatch.
+    for (const char* oneWalk : {"sphere cube", "light 1 2 3 1 1 1 plane", "texture 1 sphere"}) {
+        EXPECT_TRUE(tracesOneWalk(featuresOfText(oneWalk))) << oneWalk;
+        EXPECT_FALSE(keepsProgress(featuresOfText(oneWalk))) << oneWalk;
+    }
+    // Feelers, secondary rays or several samples: a ray may pause.
+    EXPECT_FALSE(tracesOneWalk(featuresOfText("sphere", 2)));
+    for (const char* more :
+         {"light 1 2 3 1 1 1 sphere cube", "reflectivity 0.6 sphere", "transparency 0.9 sphere"}) {
+        EXPECT_FALSE(tracesOneWalk(featuresOfText(more))) << more;
+        EXPECT_TRUE(keepsProgress(featuresOfText(more))) << more;
+    }
 }
 
 TEST(ShaderVariant, ShadersCheckCoversEachShadingFeatureAndTheirMix) {
     const std::vector<ShaderFeatures> variants = allVariants();
-    EXPECT_EQ(variants.size(), 144u);
+    EXPECT_EQ(variants.size(), 148u);
+    EXPECT_EQ(
+        count_if(variants.begin(), variants.end(), [](const ShaderFeatures& f) { return !f.aovs; }),
+        4);
     const auto count = [&](const auto& predicate) {
         return std::count_if(variants.begin(), variants.end(), predicate);
     };
@@ -228,7 +268,7 @@ TEST(ShaderVariant, ShadersCheckCoversEachShadingFeatureAndTheirMix) {
     for (std::size_t i = 0; i < variants.size(); ++i)
         for (std::size_t j = i + 1; j < variants.size(); ++j)
             ASSERT_FALSE(variants[i] == variants[j]) << describe(variants[i]);
-    EXPECT_EQ(allVariants(true).size(), 1668u);
+    EXPECT_EQ(allVariants(true).size(), 1672u);
 }
 
 }  // namespace

@@ -97,6 +97,24 @@ TEST(ReferenceTracer, PixelsThatMissShowTheBackground) {
     }
 }
 
+TEST(ReferenceTracer, WithoutAovsDepthAndNormalStayAsFrameMadeThem) {
+    // As the GPU leaves them (RenderSettings::aovs): the colour and the id
+    // are those of a render with AOVs.
+    const Scene scene = litSphere();
+    const CameraBasis basis = camera({0, 0, 5}, 60, 3, 3);
+    RenderSettings settings{3, 3, 1};
+    const Frame with = render(scene, basis, settings);
+    settings.aovs = false;
+    const Frame without = render(scene, basis, settings);
+    const Frame untouched(3, 3);
+    EXPECT_EQ(without.color, with.color);
+    EXPECT_EQ(without.id, with.id);
+    EXPECT_EQ(without.id[without.index(1, 1)], 0);
+    EXPECT_EQ(without.depth, untouched.depth);
+    EXPECT_EQ(without.normal, untouched.normal);
+    EXPECT_NE(with.depth, untouched.depth);
+}
+
 TEST(ReferenceTracer, OneBlockFillsAllItsPixelsWithTheCentreRay) {
     const Scene scene = litSphere();
     const CameraBasis basis = camera({0, 0, 5}, 60, 3, 3);
