@@ -191,6 +191,7 @@ struct Row {
     bool sphereOnly = false;
     std::optional<Timing> time[kEngines];
     std::string idsGpu = "-", idsEmbree = "-", builds;
+    std::string groupsTraced = "-";  // the specialised variant's workgroups dispatched, of all
     std::optional<Timing> smallGpu;  // the specialised variant on the all-features variant's image
     // The specialised variant's best device time (timestamp queries) and the
     // wall clock of that render: none where the queue has no timestamps.
@@ -355,6 +356,8 @@ void runExperiments(const Options& o, gpu::Context& context) {
             {"8 lanes in a row (not 4x2)", with([](auto& p) {
                  p.userDefines = {{"VKRAY_ROW_LANES", "1"}};
              })},
+            {"every workgroup traced (no primary cover)",
+             with([](auto& p) { p.primaryCover = false; })},
         };
     }
     std::printf(
@@ -480,6 +483,13 @@ int main(int argc, char** argv) {
                     Frame frame = tracer.render(scene, sized, size, &stats);
                     best.keepBest({stats.renderSeconds, stats.renderCpuSeconds});
                     row.variant = all ? row.variant : stats.variant;
+                    if (keep) {
+                        char share[64];
+                        std::snprintf(share, sizeof share, "%.1f %% (%zu of %zu)",
+                                      100.0 * double(stats.groupsTraced) / double(stats.groups),
+                                      stats.groupsTraced, stats.groups);
+                        row.groupsTraced = share;
+                    }
                     if (keep && stats.deviceSeconds &&
                         (!row.gpuDevice || *stats.deviceSeconds < *row.gpuDevice)) {
                         row.gpuDevice = stats.deviceSeconds;
@@ -555,10 +565,12 @@ int main(int argc, char** argv) {
         std::printf(
             "\nSame rays, same hits: object ids equal to the CPU reference's, and build "
             "times:\n\n");
-        std::printf("| scene | GPU ids | Embree ids | builds |\n|---|---|---|---|\n");
+        std::printf(
+            "| scene | GPU ids | Embree ids | GPU workgroups traced (the rest meet nothing) | "
+            "builds |\n|---|---|---|---|---|\n");
         for (const Row& r : rows)
-            std::printf("| %s | %s | %s | %s |\n", r.description.c_str(), r.idsGpu.c_str(),
-                        r.idsEmbree.c_str(), r.builds.c_str());
+            std::printf("| %s | %s | %s | %s | %s |\n", r.description.c_str(), r.idsGpu.c_str(),
+                        r.idsEmbree.c_str(), r.groupsTraced.c_str(), r.builds.c_str());
         std::printf(
             "\nThe specialised variant's time on the device (timestamp queries around each "
             "dispatch; best of %d), against the wall clock of that render (the rest: submits, "

@@ -62,6 +62,7 @@ VKRAY_CONST(uint, BINDING_STATUS, 16u);    // buffer GpuDispatchStatus: what one
 VKRAY_CONST(uint, BINDING_RAY_STACK, 17u); // reflection/refraction variants: texels: GpuRayTask[] (or double)
 VKRAY_CONST(uint, BINDING_MATERIALS, 18u); // texels: GpuMaterial[] (read once a hit)
 VKRAY_CONST(uint, BINDING_STRESS_OUTPUT, 19u);  // stress-output variant: buffer GpuStressSample[] (one tile)
+VKRAY_CONST(uint, BINDING_RAY_GROUPS, 20u);  // r32ui texels: the workgroups a dispatch traces (one tile)
 
 // The texels (uvec4) of each structure read through a texel buffer
 // (host/gpu/layout_check.cpp checks each against its size).
@@ -233,6 +234,12 @@ struct GpuDoubleRayTask {
     vec4 speeds;
 };
 #endif
+
+// A dispatch traces only the workgroups of its tile whose primary rays may
+// meet an object (host/render/primary_cover.h): workgroup i of the dispatch
+// is the tile's workgroup at (x, y) of ray-groups texel i, x | y << 16. The
+// host writes the other workgroups' pixels, which show the background.
+VKRAY_CONST(uint, RAY_GROUP_SHIFT, 16u);
 
 // Where the current dispatch writes, and how much work each ray may do in
 // it (push constant). llvmpipe ends every loop of an invocation, silently,

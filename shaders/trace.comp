@@ -38,6 +38,7 @@ layout(std140, set = 0, binding = BINDING_FRAME) uniform FrameBlock { FrameParam
 // vector loads or stores under the lane mask, where a storage-buffer access
 // inside an if or a loop is a scalar loop over the 8 lanes (docs/lavapipe.md).
 layout(set = 0, binding = BINDING_PIXELS, rgba32ui) uniform uimageBuffer pixelTexels;
+layout(set = 0, binding = BINDING_RAY_GROUPS, r32ui) uniform readonly uimageBuffer rayGroupTexels;
 // A ray pauses only where an invocation may walk the scene more than once: a
 // variant of one walk a pixel (a primary ray, no feelers, no secondary rays,
 // one sample) finishes every ray in one dispatch and keeps no progress.
@@ -322,9 +323,12 @@ void main() {
 #if VKRAY_PRECISION_FP64
     doubleCamera = doubleCameraBlock;
 #endif
-    // This invocation's pixel: one per pixel, or one per block x block pixels.
+    // This invocation's pixel: one per pixel, or one per block x block
+    // pixels, in the tile's workgroup that this one of the dispatch traces.
     uint block = frame.image.z;
-    uvec2 rayInTile = gl_GlobalInvocationID.xy;
+    uint group = imageLoad(rayGroupTexels, int(gl_WorkGroupID.x)).x;
+    uvec2 groupInTile = uvec2(group & ((1u << RAY_GROUP_SHIFT) - 1u), group >> RAY_GROUP_SHIFT);
+    uvec2 rayInTile = groupInTile * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy;
 #ifndef VKRAY_ROW_LANES  // an experiment: off unless -D defines it (BENCHMARKS.md)
     // llvmpipe runs 8 invocations consecutive in x as one SIMD vector, and
     // a loop turns until its slowest lane is done: each vector (a row of an
@@ -332,7 +336,7 @@ void main() {
     // closer than those of 8 in a row.
     if (gl_WorkGroupSize.x == 8u && gl_WorkGroupSize.y % 2u == 0u) {
         uvec2 local = gl_LocalInvocationID.xy;
-        rayInTile = gl_WorkGroupID.xy * gl_WorkGroupSize.xy +
+        rayInTile = groupInTile * gl_WorkGroupSize.xy +
                     uvec2((local.y & 1u) * 4u + (local.x & 3u), (local.y >> 1u) * 2u + (local.x >> 2u));
     }
 #endif

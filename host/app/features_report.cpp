@@ -48,6 +48,7 @@ std::string bufferSize(std::uint32_t binding, const gpu::GpuScene& packed, const
     case BINDING_MATERIALS: return arrayBytes(packed.materials);
     case BINDING_LIGHTS: return arrayBytes(packed.lights);
     case BINDING_PIXELS: return "one tile of " + std::to_string(sizeof(GpuPixel)) + "-byte pixels";
+    case BINDING_RAY_GROUPS: return "one tile's workgroups, 4 bytes each";
     case BINDING_PROGRESS:
         return "one tile of " + std::to_string(sizeof(GpuRayProgress)) + "-byte ray states";
     case BINDING_STATUS: return std::to_string(sizeof(GpuDispatchStatus)) + " bytes";

@@ -74,6 +74,10 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
             << (stats.tiles == 1 ? " tile" : " tiles") << " in " << stats.dispatches
             << (stats.dispatches == 1 ? " dispatch, " : " dispatches, ")
             << fixedDigits(mrays(stats.rays, stats.renderSeconds), 2) << " Mrays/s\n";
+        if (stats.groupsTraced < stats.groups)
+            out << "gpu render: " << stats.groupsTraced << " of " << stats.groups
+                << " workgroups traced; the other rays meet nothing, their pixels the "
+                   "background's\n";
         out << "gpu render: device time " << deviceTime(stats) << "\n";
         if (stats.tilesRedone > 0)
             out << "gpu render: " << stats.tilesRedone

@@ -340,8 +340,12 @@ HostBuffer::HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUs
 void HostBuffer::upload(const void* source, vk::DeviceSize bytes) {
     if (!mapped_) throw Error("internal: an upload to a device-local buffer without staging");
     std::memcpy(mapped_, source, size_t(bytes));
-    if (!coherent_)
-        device_->flushMappedMemoryRanges(vk::MappedMemoryRange(*memory_, 0, VK_WHOLE_SIZE));
+    flush();
+}
+
+void HostBuffer::flush() {
+    if (coherent_) return;
+    device_->flushMappedMemoryRanges(vk::MappedMemoryRange(*memory_, 0, VK_WHOLE_SIZE));
 }
 
 void HostBuffer::invalidate() {

@@ -47,6 +47,8 @@ public:
     vk::DeviceSize size() const { return size_; }
     void* data() const { return mapped_; }                  // nullptr when device-local
     void upload(const void* source, vk::DeviceSize bytes);  // host-visible only
+    // Makes host writes through data() visible to the device on non-coherent memory.
+    void flush();
     // Makes device writes visible to the host on non-coherent memory.
     void invalidate();
 

@@ -294,7 +294,7 @@ GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
     }
 
     if (features.objectBvh) {
-        const ObjectBvh objects = buildObjectBvh(scene);
+        ObjectBvh objects = buildObjectBvh(scene);
         packed.objectNodes = packBvh(objects.bvh);
         packed.objectIndex.assign(objects.bvh.order.begin(), objects.bvh.order.end());
         packed.unboundedFirst = uint(packed.objectIndex.size());
@@ -303,6 +303,7 @@ GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
                                   objects.unbounded.end());
         // featuresOf asks for the BVH only with bounded objects: the root exists.
         if (packed.objectNodes.empty()) throw Error("internal: an object BVH without nodes");
+        packed.objectBvh = std::move(objects.bvh);
     }
     return packed;
 }

@@ -6,9 +6,11 @@
 
 #include "gpu/shader_variant.h"
 #include "render/camera.h"
+#include "scene/bvh.h"
 #include "scene/scene.h"
 #include "shaders/layout.h"
 
+#include <optional>
 #include <vector>
 
 namespace vkray::gpu {
@@ -23,6 +25,7 @@ struct GpuScene {
     std::vector<GpuBvhNode> objectNodes;
     std::vector<uint> objectIndex;
     uint unboundedFirst = 0, unboundedCount = 0;
+    std::optional<Bvh> objectBvh;  // the same nodes in double (a primary cover's boxes)
     // features.kinds[KIND_MESH]:
     std::vector<GpuMesh> meshes;  // indexed like Scene::meshes
     std::vector<GpuBvhNode> meshNodes;

@@ -181,8 +181,12 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     // the next while the host reads this one back. A schedule of another
     // process (MPI) hands out one tile at a time.
     const bool overlap = schedule == nullptr;
+    // Rays that provably meet nothing are left out; naive keeps them, and
+    // the stress and debug records want every ray.
+    const bool cover = options_.primaryCover && options_.precision != Precision::Naive &&
+                       !features.stressOutput && !features.debugPixel;
     TracePass pass(context_.impl(), pipeline, features, features.doubles, scene, camera, settings,
-                   tile, overlap ? 2 : 1);
+                   tile, cover, overlap ? 2 : 1);
     st.setupSeconds = setup.seconds() - st.shader.seconds;
 
     Frame frame(settings.width, settings.height);
@@ -255,6 +259,8 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     }
     st.renderSeconds = rendering.seconds();
     st.renderCpuSeconds = processCpuSeconds() - renderCpuStart;
+    st.groupsTraced = pass.groupsTraced();
+    st.groups = pass.groups();
     return frame;
 } catch (const vk::SystemError& failure) {
     explainVulkanFailure(failure, context_.device());
@@ -284,7 +290,7 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
     features.stressOutput = true;
     const Pipeline& pipeline = pipelineFor(features, st);
     TracePass pass(context_.impl(), pipeline, features, features.doubles, scene, camera, oneSample,
-                   1);
+                   1, false);
     // A one-pixel tile at the corner of the pixel's block: its one ray is the block's.
     const int block = std::max(settings.block, 1);
     uint turnBudget = kTurnBudget;

@@ -38,6 +38,11 @@ struct GpuRenderOptions {
     // Other shapes are for benchmarks (vkray_bench --workgroup).
     int workgroupX = 0, workgroupY = 0;
     bool serpentineTiles = false;  // tile rows alternately right to left (else all left to right)
+    // Dispatch only the workgroups whose primary rays may meet an object
+    // (render/primary_cover.h); the others' pixels are written as misses,
+    // the same bytes. Robust and fp64 only: naive's misses are as the
+    // textbook's formulas make them. Benchmarks turn it off to compare.
+    bool primaryCover = true;
     // Counted loop turns one ray may run in one dispatch before it pauses
     // (0: the renderer's own bound, well below llvmpipe's loop limit). The
     // image is the same whatever the bound; tests set it low to prove that.
@@ -58,7 +63,10 @@ struct GpuRenderStats {
     std::size_t tiles = 0;
     std::size_t dispatches = 0;   // a tile takes several when its rays pause (turnBudget)
     std::size_t tilesRedone = 0;  // started over: the driver's loop limit cut a dispatch short
-    std::size_t rays = 0;         // primary rays traced
+    std::size_t rays = 0;         // primary rays traced (or known to meet nothing)
+    // Workgroups of rays dispatched, of all the frame's: the others' primary
+    // rays meet nothing (GpuRenderOptions::primaryCover).
+    std::size_t groupsTraced = 0, groups = 0;
 };
 
 // The variant a render of `scene` uses, and its source: what render

@@ -165,6 +165,7 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
     if (features.lights || features.has(Shading::Shadows))
         bindings.push_back({BINDING_LIGHTS, "lights", Texels});
     bindings.push_back({BINDING_PIXELS, "pixels", Texels});
+    bindings.push_back({BINDING_RAY_GROUPS, "ray groups", UintTexels});
     if (!tracesOneWalk(features)) bindings.push_back({BINDING_PROGRESS, "ray progress", Texels});
     bindings.push_back({BINDING_STATUS, "dispatch status", Storage});
     if (features.has(Shading::Reflection) || features.has(Shading::Refraction))

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <utility>
 
 namespace vkray::gpu {
@@ -42,7 +43,8 @@ BindingUse useOf(BindingKind kind) {
 // pixels, the status, the debug and stress records) stays host-visible.
 BufferMemory memoryOf(uint binding, BindingKind kind) {
     const bool texels = kind == BindingKind::Texels || kind == BindingKind::UintTexels;
-    return (texels && binding != BINDING_PIXELS) || binding == BINDING_DOUBLE_CAMERA
+    return (texels && binding != BINDING_PIXELS && binding != BINDING_RAY_GROUPS) ||
+                   binding == BINDING_DOUBLE_CAMERA
                ? BufferMemory::DeviceLocal
                : BufferMemory::HostVisible;
 }
@@ -50,7 +52,8 @@ BufferMemory memoryOf(uint binding, BindingKind kind) {
 // Every buffer TracePass allocates for this variant, before it allocates any.
 std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures& features,
                                     bool doubles, size_t tilePixels, size_t tileRays,
-                                    size_t pendingRays, size_t debugEntries, size_t slots) {
+                                    size_t tileGroups, size_t pendingRays, size_t debugEntries,
+                                    size_t slots) {
     std::map<uint, BindingKind> kinds;
     for (const ShaderBinding& b : bindingsFor(features)) kinds[b.binding] = b.kind;
     // A scene array: a texel buffer, its texels those of its binding's kind.
@@ -69,6 +72,8 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     for (size_t slot = 0; slot < slots; ++slot) {
         needs.push_back({"tile pixels", tilePixels, sizeof(GpuPixel), false,
                          "Use a smaller --block", sizeof(uvec4)});
+        needs.push_back(
+            {"ray groups", tileGroups, sizeof(uint), false, "Use a smaller --block", sizeof(uint)});
         if (kinds.count(BINDING_PROGRESS))
             needs.push_back({"ray progress", tileRays, sizeof(GpuRayProgress), false,
                              "Use a smaller --block", sizeof(uvec4)});
@@ -106,6 +111,23 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     return needs;
 }
 
+// The pixel of a ray that meets nothing.
+GpuPixel missedPixel(const glm::dvec3& background, bool aovs, uint samples, bool averaged) {
+    // As the shader makes it: each sample's colour is the background's float,
+    // their sum in sample order divided by their count (in a variant of one
+    // walk a pixel, the one sample's colour as it is).
+    const float br = float(background.x), bg = float(background.y), bb = float(background.z);
+    float r = 0, g = 0, bl = 0;
+    for (uint k = 0; k < samples; ++k) r += br, g += bg, bl += bb;
+    if (averaged) r /= float(samples), g /= float(samples), bl /= float(samples);
+    GpuPixel p{};
+    p.color = {r, g, bl, 0};
+    const std::int32_t none = -1;
+    std::memcpy(&p.color.w, &none, sizeof none);
+    if (aovs) p.normal = {0, 0, 0, std::numeric_limits<float>::infinity()};
+    return p;
+}
+
 }  // namespace
 
 vk::DescriptorType descriptorTypeOf(BindingKind kind) {
@@ -116,7 +138,8 @@ namespace {
 
 // The bindings the shader writes: each tile in flight has its own.
 bool perTile(uint binding) {
-    return binding == BINDING_PIXELS || binding == BINDING_PROGRESS || binding == BINDING_STATUS ||
+    return binding == BINDING_PIXELS || binding == BINDING_RAY_GROUPS ||
+           binding == BINDING_PROGRESS || binding == BINDING_STATUS ||
            binding == BINDING_RAY_STACK || binding == BINDING_DEBUG ||
            binding == BINDING_STRESS_OUTPUT;
 }
@@ -187,20 +210,29 @@ void TracePass::allocate(uint binding, size_t bytes, int slot) {
 
 TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
                      bool doubles, const Scene& scene, const CameraBasis& camera,
-                     const RenderSettings& settings, int tile, int slots)
+                     const RenderSettings& settings, int tile, bool cover, int slots)
     : c_(c),
       pipeline_(pipeline),
       firstSample_(uint(settings.firstSample)),
       endSample_(uint(sampleEnd(settings))),
+      cover_(settings),
       slots_(size_t(std::max(slots, 1))) {
-    const GpuScene packed = packScene(scene, features);
+    GpuScene packed = packScene(scene, features);
+    if (cover)
+        cover_ = PrimaryCover(coverShapesOf(scene, packed.objectBvh ? &*packed.objectBvh : nullptr),
+                              camera, settings);
+    packed.objectBvh.reset();
+    background_ = missedPixel(scene.background, features.aovs, endSample_ - firstSample_,
+                              !tracesOneWalk(features));
     const size_t debugEntries = 4 + scene.objects.size() + scene.lights.size();
     const size_t raysPerSide = size_t((tile + settings.block - 1) / settings.block);
     const size_t tileRays = raysPerSide * raysPerSide;
+    const size_t tileGroups = ((raysPerSide + pipeline.workgroupX - 1) / pipeline.workgroupX) *
+                              ((raysPerSide + pipeline.workgroupY - 1) / pipeline.workgroupY);
     const bool rayStack = features.has(Shading::Reflection) || features.has(Shading::Refraction);
     const size_t pendingRays = rayStack ? tileRays * size_t(pendingRayEntries(scene)) : 0;
     checkBufferNeeds(bufferNeeds(packed, features, doubles, size_t(tile) * size_t(tile), tileRays,
-                                 pendingRays, debugEntries, slots_.size()),
+                                 tileGroups, pendingRays, debugEntries, slots_.size()),
                      deviceLimits(c.info));
     const std::vector<FrameParams> frameParams{packFrame(scene, packed, camera, settings)};
     for (Slot& slot : slots_) {
@@ -219,6 +251,7 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
     if (kinds_.count(BINDING_LIGHTS)) add(BINDING_LIGHTS, packed.lights);
     for (int s = 0; s < int(slots_.size()); ++s) {
         add(BINDING_PIXELS, std::vector<GpuPixel>(size_t(tile) * size_t(tile)), s);
+        add(BINDING_RAY_GROUPS, std::vector<uint>(tileGroups), s);
         if (kinds_.count(BINDING_PROGRESS))
             allocate(BINDING_PROGRESS, sizeof(GpuRayProgress) * tileRays, s);
         add(BINDING_STATUS, std::vector<GpuDispatchStatus>(1), s);
@@ -308,14 +341,41 @@ void TracePass::start(int slot, int tx, int ty, int w, int h, int block, uint tu
     s.params = TileParams{{uint(tx), uint(ty), uint(w), uint(h)},
                           {turnBudget, 1u, kCanaryTurns, raysX},
                           {firstSample_, endSample_, 0u, 0u}};
-    const uint groupX = pipeline_.workgroupX, groupY = pipeline_.workgroupY;
-    s.groupsX = (raysX + groupX - 1) / groupX;
-    s.groupsY = (raysY + groupY - 1) / groupY;
-    submit(s, true);
+    // The workgroups whose rays may meet an object are dispatched; the
+    // others' pixels are the background's, written here.
+    const int groupX = int(pipeline_.workgroupX), groupY = int(pipeline_.workgroupY);
+    HostBuffer& pixels = buffer(BINDING_PIXELS, slot);
+    HostBuffer& groups = buffer(BINDING_RAY_GROUPS, slot);
+    auto* tilePixels = static_cast<GpuPixel*>(pixels.data());
+    auto* groupList = static_cast<uint*>(groups.data());
+    s.groups = 0;
+    for (int gy = 0; gy * groupY < int(raysY); ++gy) {
+        for (int gx = 0; gx * groupX < int(raysX); ++gx) {
+            // Its rays' blocks, which may reach past the tile at the image's edge.
+            const int x0 = gx * groupX * block, y0 = gy * groupY * block;
+            const int x1 =
+                std::min(gx + 1, int(raysX + uint(groupX) - 1) / groupX) * groupX * block;
+            const int y1 =
+                std::min(gy + 1, int(raysY + uint(groupY) - 1) / groupY) * groupY * block;
+            ++groups_;
+            if (cover_.mayHit(tx + x0, ty + y0, tx + x1, ty + y1)) {
+                groupList[s.groups++] = uint(gx) | (uint(gy) << RAY_GROUP_SHIFT);
+                continue;
+            }
+            for (int y = y0; y < std::min(y1, h); ++y)
+                for (int x = x0; x < std::min(x1, w); ++x)
+                    tilePixels[size_t(y) * size_t(w) + size_t(x)] = background_;
+        }
+    }
+    groupsTraced_ += s.groups;
+    pixels.flush();
+    groups.flush();
+    if (s.groups > 0) submit(s, true);
 }
 
 void TracePass::finish(int slot, uint& turnBudget, GpuRenderStats& stats) {
     Slot& s = slots_.at(size_t(slot));
+    if (s.groups == 0) return;  // every pixel of the tile shows the background
     for (;;) {
         const GpuDispatchStatus status = wait(s, stats.deviceSeconds);
         ++stats.dispatches;
@@ -371,7 +431,7 @@ void TracePass::submit(Slot& s, bool first) {
         // the compute stage, so that no two tiles' intervals overlap.
         commands.writeTimestamp(vk::PipelineStageFlagBits::eComputeShader, *s.timestamps, 0);
     }
-    commands.dispatch(s.groupsX, s.groupsY, 1);
+    commands.dispatch(s.groups, 1, 1);
     if (*s.timestamps)
         commands.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *s.timestamps, 1);
     // Shader writes must be visible to the host before the read-back.

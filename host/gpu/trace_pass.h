@@ -7,6 +7,7 @@
 #include "gpu/gpu_tracer.h"
 #include "gpu/shader_variant.h"
 #include "render/camera.h"
+#include "render/primary_cover.h"
 #include "scene/scene.h"
 #include "shaders/layout.h"
 
@@ -48,18 +49,24 @@ constexpr uint kCanaryTurns = 4;
 class TracePass {
 public:
     // doubles: the fp64 variant, which also reads the camera and M^-1 in double.
+    // cover: dispatch only the workgroups whose primary rays may meet an
+    // object (render/primary_cover.h), the other pixels written as misses.
     TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
               bool doubles, const Scene& scene, const CameraBasis& camera,
-              const RenderSettings& settings, int tile, int slots = 1);
+              const RenderSettings& settings, int tile, bool cover, int slots = 1);
     // Waits for what is still in flight: the device may not outlive its buffers.
     ~TracePass();
     TracePass(const TracePass&) = delete;
     TracePass& operator=(const TracePass&) = delete;
 
     int slots() const { return int(slots_.size()); }
+    // Workgroups dispatched, of all the workgroups of the tiles started.
+    std::size_t groupsTraced() const { return groupsTraced_; }
+    std::size_t groups() const { return groups_; }
 
     // Submits the first dispatch of the tile at (tx, ty) of w x h pixels in
     // `slot`, whose last tile must be finished; returns without waiting.
+    // The pixels of its workgroups outside the cover are written at once.
     void start(int slot, int tx, int ty, int w, int h, int block, uint turnBudget);
     // Waits for the tile of `slot` and dispatches it again until all its rays
     // are done; its pixels are then in pixels(slot), row-major with stride w.
@@ -104,10 +111,10 @@ private:
         vk::raii::CommandBuffer commands = nullptr;
         vk::raii::Fence fence = nullptr;
         vk::raii::QueryPool timestamps =
-            nullptr;                    // before and after the dispatch, if the queue can
-        TileParams params{};            // of the dispatch submitted last
-        uint groupsX = 0, groupsY = 0;  // the workgroups of its dispatches
-        bool inFlight = false;          // submitted, not yet waited for
+            nullptr;            // before and after the dispatch, if the queue can
+        TileParams params{};    // of the dispatch submitted last
+        uint groups = 0;        // the workgroups of its dispatches (none: nothing to trace)
+        bool inFlight = false;  // submitted, not yet waited for
     };
 
     // Records and submits one dispatch of the slot's tile; `first`: its rays start afresh.
@@ -129,7 +136,10 @@ private:
     const Pipeline& pipeline_;
     std::map<uint, BindingKind> kinds_;  // the variant's bindings
     uint firstSample_, endSample_;       // the samples each ray traces
-    Buffers buffers_;                    // the scene's, shared by the slots
+    PrimaryCover cover_;                 // where primary rays may meet an object
+    GpuPixel background_{};              // the pixel of a ray that meets nothing
+    std::size_t groupsTraced_ = 0, groups_ = 0;
+    Buffers buffers_;  // the scene's, shared by the slots
     struct Staged {
         std::unique_ptr<HostBuffer> from;  // host-visible
         vk::Buffer to;                     // device-local

@@ -68,6 +68,7 @@ TEST_F(Features, DefaultSceneReport) {
         "18 materials texels 480 bytes (5 x 96)",
         "2 lights texels 96 bytes (3 x 32)",
         "3 pixels texels one tile of 32-byte pixels",
+        "20 ray groups texels one tile's workgroups, 4 bytes each",
         "15 ray progress texels one tile of 32-byte ray states",
         "16 dispatch status storage 16 bytes",
     };
@@ -94,6 +95,7 @@ TEST_F(Features, MeshSceneBindsMeshAndBvhBuffers) {
                                             "18 materials",
                                             "2 lights",
                                             "3 pixels",
+                                            "20 ray groups",
                                             "15 ray progress",
                                             "16 dispatch status",
                                             "5 object BVH nodes",
@@ -124,13 +126,13 @@ TEST_F(Features, VariantAllCompilesEveryFeatureAndBindsTheirBuffers) {
     // The pending rays (maxRecursionDepth 3 + 1 entries), the mesh, CSG and
     // pixmap arrays are bound (empty: one element, as Vulkan wants).
     const std::vector<std::string> lines = buffers(run.output);
-    ASSERT_EQ(lines.size(), 14u) << run.output;
-    EXPECT_EQ(lines[7], "17 pending rays texels one tile of 4-entry stacks of 64-byte rays");
-    EXPECT_EQ(lines[10],
-              "9 triangles texels empty (one 96-byte element: Vulkan has no empty buffers)");
+    ASSERT_EQ(lines.size(), 15u) << run.output;
+    EXPECT_EQ(lines[8], "17 pending rays texels one tile of 4-entry stacks of 64-byte rays");
     EXPECT_EQ(lines[11],
+              "9 triangles texels empty (one 96-byte element: Vulkan has no empty buffers)");
+    EXPECT_EQ(lines[12],
               "10 CSG nodes texels empty (one 16-byte element: Vulkan has no empty buffers)");
-    EXPECT_EQ(lines[13],
+    EXPECT_EQ(lines[14],
               "12 pixmap texels texels empty (one 4-byte element: Vulkan has no empty buffers)");
 }
 

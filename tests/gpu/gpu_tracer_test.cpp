@@ -169,8 +169,11 @@ TEST(GpuTracer, TwoTilesInFlightGiveTheBytesOfOneAtATime) {
     camera.eye = {3, 4, 5};
     const RenderSettings settings{50, 40, 1, 4};
     const CameraBasis basis = makeCameraBasis(camera, 50, 40);
-    gpu::GpuTracer tracer(test::gpuContext(),
-                          {.shaderDirectory = test::kShaderDir, .tileSize = 16, .turnBudget = 8});
+    // Every tile dispatched, even those whose rays all miss.
+    gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir,
+                                               .tileSize = 16,
+                                               .primaryCover = false,
+                                               .turnBudget = 8});
     gpu::GpuRenderStats overlapped, sequential;
     const Frame a = tracer.render(scene, basis, settings, &overlapped);
     OneTileAtATime schedule;
@@ -215,8 +218,9 @@ TEST(GpuTracer, DeviceTimeOfTheDispatchesLiesWithinTheRender) {
     Scene scene = parseSdl("push translate 0.3 0 0 sphere pop cube", "timed.sdl", {});
     Camera camera;
     camera.eye = {3, 4, 5};
-    gpu::GpuTracer tracer(test::gpuContext(),
-                          {.shaderDirectory = test::kShaderDir, .tileSize = 16});
+    gpu::GpuTracer tracer(
+        test::gpuContext(),
+        {.shaderDirectory = test::kShaderDir, .tileSize = 16, .primaryCover = false});
     gpu::GpuRenderStats stats;
     tracer.render(scene, makeCameraBasis(camera, 50, 40), {50, 40, 1}, &stats);
     ASSERT_EQ(stats.deviceSeconds.has_value(), test::gpuContext().device().timestampValidBits > 0);
@@ -264,6 +268,51 @@ TEST(GpuTracer, WithoutAovsTheColourAndIdsAreThoseOfARenderWithThem) {
             EXPECT_EQ(withStats.variant.find("+aovs") != std::string::npos, true) << what;
             EXPECT_EQ(withoutStats.variant.find("+aovs"), std::string::npos) << what;
             EXPECT_EQ(withStats.dispatches, withoutStats.dispatches) << what;
+        }
+    }
+}
+
+// Workgroups whose primary rays can meet nothing are not dispatched
+// (GpuRenderOptions::primaryCover): their pixels, written on the host, are
+// the bytes the shader writes for a miss, AOVs included, with blocks, several
+// samples, feelers and a floor whose horizon crosses the image.
+TEST(GpuTracer, PixelsLeftToTheBackgroundAreThoseTheShaderWouldWrite) {
+    const char* const scenes[] = {
+        "background 0.1 0.2 0.3 push translate 0.3 0 0 scale 0.3 0.3 0.3 sphere pop "
+        "push translate -1 0.5 0 scale 0.2 0.2 0.2 cube pop",
+        "background 0.7 0.11 0.3 light 4 4 4 1 1 1 reflectivity 0.7 push translate 0.3 0 0 "
+        "scale 0.3 0.3 0.3 sphere pop push translate 0 -1 0 rotate -90 1 0 0 plane pop",
+    };
+    Camera camera;
+    camera.eye = {3, 1, 5};
+    camera.look = {0, 0, 0};
+    camera.up = {0, 1, 0};
+    const CameraBasis basis = makeCameraBasis(camera, 70, 50);
+    for (const char* sdl : scenes) {
+        const Scene scene = parseSdl(sdl, "cover.sdl", {});
+        for (const RenderSettings& settings :
+             {RenderSettings{70, 50, 1}, RenderSettings{70, 50, 3}, RenderSettings{70, 50, 1, 5}}) {
+            gpu::GpuTracer covered(test::gpuContext(),
+                                   {.shaderDirectory = test::kShaderDir, .tileSize = 32});
+            gpu::GpuTracer whole(
+                test::gpuContext(),
+                {.shaderDirectory = test::kShaderDir, .tileSize = 32, .primaryCover = false});
+            gpu::GpuRenderStats coveredStats, wholeStats;
+            const Frame a = covered.render(scene, basis, settings, &coveredStats);
+            const Frame b = whole.render(scene, basis, settings, &wholeStats);
+            const std::string what = std::string(sdl) + ", block " +
+                                     std::to_string(settings.block) + ", spp " +
+                                     std::to_string(settings.spp);
+            EXPECT_EQ(a.color, b.color) << what;
+            EXPECT_EQ(a.id, b.id) << what;
+            EXPECT_EQ(a.depth, b.depth) << what;
+            EXPECT_EQ(a.normal, b.normal) << what;
+            if (settings.block == 1)  // the sky, and the corners the objects leave
+                EXPECT_LT(coveredStats.groupsTraced, coveredStats.groups) << what;
+            EXPECT_GT(coveredStats.groupsTraced, 0u) << what;
+            EXPECT_EQ(wholeStats.groupsTraced, wholeStats.groups) << what;
+            EXPECT_EQ(coveredStats.groups, wholeStats.groups) << what;
+            EXPECT_EQ(coveredStats.rays, wholeStats.rays) << what;
         }
     }
 }
