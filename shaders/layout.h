@@ -42,7 +42,7 @@ VKRAY_CONST(uint, WORKGROUP_Y, 8u);
 // llvmpipe an imageLoad is a few vector loads, where a storage-buffer read
 // inside a loop is a scalar loop over the lanes (docs/lavapipe.md). What a
 // ray writes stays in storage buffers.
-VKRAY_CONST(uint, BINDING_FRAME, 0u);    // uniform FrameParams
+VKRAY_CONST(uint, BINDING_FRAME, 0u);    // buffer FrameParams
 VKRAY_CONST(uint, BINDING_OBJECTS, 1u);  // texels: GpuObjectGeometry[] (what a walk reads)
 VKRAY_CONST(uint, BINDING_LIGHTS, 2u);   // texels: GpuLight[]
 VKRAY_CONST(uint, BINDING_PIXELS, 3u);   // texels: GpuPixel[] (one tile; the presenter reads it as a buffer)
@@ -63,6 +63,7 @@ VKRAY_CONST(uint, BINDING_RAY_STACK, 17u); // reflection/refraction variants: te
 VKRAY_CONST(uint, BINDING_MATERIALS, 18u); // texels: GpuMaterial[] (read once a hit)
 VKRAY_CONST(uint, BINDING_STRESS_OUTPUT, 19u);  // stress-output variant: buffer GpuStressSample[] (one tile)
 VKRAY_CONST(uint, BINDING_RAY_GROUPS, 20u);  // r32ui texels: the workgroups a dispatch traces (one tile)
+VKRAY_CONST(uint, BINDING_TILE, 21u);        // buffer TileParams: the dispatch's tile and work
 
 // The texels (uvec4) of each structure read through a texel buffer
 // (host/gpu/layout_check.cpp checks each against its size).
@@ -193,7 +194,7 @@ struct GpuLight {
     vec4 color;     // rgb; w unused
 };
 
-// Per-frame constants (uniform buffer). The camera basis is built on the host
+// Per-frame constants (a storage buffer, as TileParams). The camera basis is built on the host
 // in double: a primary ray through image point (sx, sy) in [-1, 1]^2 is
 // dir = normalize(-n + sx * tanHalfFov * aspect * u + sy * tanHalfFov * v).
 struct FrameParams {
@@ -242,7 +243,12 @@ struct GpuDoubleRayTask {
 VKRAY_CONST(uint, RAY_GROUP_SHIFT, 16u);
 
 // Where the current dispatch writes, and how much work each ray may do in
-// it (push constant). llvmpipe ends every loop of an invocation, silently,
+// it (a storage buffer per tile in flight, written before each dispatch).
+// Not a push constant nor a uniform buffer: lavapipe compiles a new variant
+// of a shader, at every dispatch, with the values of the uniforms that its
+// ifs and loops test inlined (its uniform inlining), so that a tile's
+// parameters cost a compile a dispatch, and the canary's turns (below)
+// could be unrolled away. llvmpipe ends every loop of an invocation, silently,
 // once 65 535 loop turns have run in it; so a ray's work is cut into
 // dispatches of at most `work.x` counted turns, its state kept in
 // GpuRayProgress between them, and a canary loop of `work.z` turns at the

@@ -190,12 +190,21 @@ struct RayTask {
     Medium medium;
 };
 
-// Rays waiting. Taking one adds at most two, one level deeper, so
-// maxRecursionDepth + 1 entries (frame.sampling.w) hold the deepest tree.
-// With secondary rays they live in a texel buffer, frame.sampling.w per
-// invocation, so that they outlast a dispatch; without, the one pending ray
-// is a sample's primary ray, made again when a dispatch resumes.
+// Rays to follow. A hit spawns at most two, one level deeper: the first
+// (the reflected ray, else the refracted one) is followed next, from
+// registers (nextRay); the refracted ray of a hit that also reflects waits
+// on a stack, for after the reflected ray's tree, as in Hill's shade(). On
+// llvmpipe each word a shader stores is a loop over the 8 lanes, so a chain
+// of rays (reflection or refraction alone) stores none, and a tree one ray a
+// branch. maxRecursionDepth + 1 entries (frame.sampling.w) hold the deepest
+// tree. The stack lives in a texel buffer, frame.sampling.w entries per
+// invocation, so that it outlasts a dispatch: a ray that pauses puts its next
+// ray there too. Without secondary rays the next ray is a sample's primary
+// ray, made again when a dispatch resumes.
 #define VKRAY_RAY_STACK (VKRAY_REFLECTION || VKRAY_REFRACTION)
+RayTask nextRay;
+bool haveNext;
+
 #if VKRAY_RAY_STACK
 // Texels, as the pixels (trace.comp): GpuRayTask, or GpuDoubleRayTask in fp64.
 layout(set = 0, binding = BINDING_RAY_STACK, rgba32ui) uniform uimageBuffer pendingRayTexels;
@@ -234,18 +243,6 @@ RayTask popRay(inout uint top) {
     vec4 speeds = texelAsVec4(imageLoad(pendingRayTexels, at + 2 * REAL4_TEXELS + 1));
     return RayTask(origin.xyz, direction.xyz, weight.rgb, uint(origin.w),
                    Medium(speeds, uint(direction.w)));
-}
-#else
-RayTask pendingRay;
-
-void pushRay(inout uint top, RayTask task) {
-    pendingRay = task;
-    ++top;
-}
-
-RayTask popRay(inout uint top) {
-    --top;
-    return pendingRay;
 }
 #endif
 
@@ -287,16 +284,12 @@ uint nextFacingLight(uint i, GpuMaterial object, Surface s, vec3 v, vec3 k, bool
 void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint budget,
                   out bool aovFound, out GpuPixel aov) {
     uint sampleIndex = floatBitsToUint(ray.sum.w);
-    uint top = floatBitsToUint(ray.color.w);
+    uint top = floatBitsToUint(ray.color.w);  // rays on the stack
     vec3 sum = ray.sum.rgb, color = ray.color.rgb;
-#if VKRAY_RAY_STACK
-    if (top == 0u) pushRay(top, primaryTask(sampleIndex));  // the first dispatch
-#else
-    // The first dispatch's ray, or a paused sample's only one left: both
-    // sides of an if run on llvmpipe, so the ray is made once for both.
-    pendingRay = primaryTask(sampleIndex);
-    top = 1u;
-#endif
+    // The sample's primary ray, unless a paused sample left rays on the
+    // stack: both sides of an if run on llvmpipe, so it is made for both.
+    nextRay = primaryTask(sampleIndex);
+    haveNext = top == 0u;
     // The hit whose lights are being visited (while light < the light count).
     RayTask task;
     Surface s;
@@ -322,7 +315,12 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
             walkDirection /= walkMax;
 #endif
         } else {
-            task = popRay(top);
+#if VKRAY_RAY_STACK
+            task = haveNext ? nextRay : popRay(top);
+#else
+            task = nextRay;
+#endif
+            haveNext = false;
             walkOrigin = task.origin;
             walkDirection = task.direction;
         }
@@ -377,23 +375,27 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
                     color += task.weight * lightTerm(object, s, v, k, i, facing ? 1.0 : 0.0, record);
                 }
 #endif
-                // The secondary rays wait on the stack until the lights are
-                // done; refraction goes first, so that reflection is followed
-                // first, as in Hill's shade().
+                // The secondary rays wait until the lights are done; the
+                // reflected ray goes next, the refracted one after its tree.
                 if (task.level < min(frame.sampling.z, MAX_RECURSION_DEPTH)) {
 #if VKRAY_REFRACTION
                     if ((follow & FOLLOW_REFRACTION) != 0u) {
                         Medium medium = task.medium;
                         vec3 t = refracted(vec3(task.direction), s, object.material.z, medium);
-                        pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, t, t, s.genericScale), t,
-                                             task.weight * object.material.y, task.level + 1u, medium));
+                        nextRay = RayTask(offsetOrigin(s.p, s.geometric, t, t, s.genericScale), t,
+                                          task.weight * object.material.y, task.level + 1u, medium);
+                        haveNext = true;
                     }
 #endif
 #if VKRAY_REFLECTION
                     if ((follow & FOLLOW_REFLECTION) != 0u) {
+#if VKRAY_REFRACTION
+                        if (haveNext) pushRay(top, nextRay);  // the refracted ray waits
+#endif
                         rvec3 r = normalize(task.direction - 2.0 * dot(task.direction, rvec3(s.m)) * rvec3(s.m));
-                        pushRay(top, RayTask(offsetOrigin(s.p, s.geometric, vec3(r), vec3(r), s.genericScale), r,
-                                             task.weight * object.material.x, task.level + 1u, task.medium));
+                        nextRay = RayTask(offsetOrigin(s.p, s.geometric, vec3(r), vec3(r), s.genericScale), r,
+                                          task.weight * object.material.x, task.level + 1u, task.medium);
+                        haveNext = true;
                     }
 #endif
                 }
@@ -404,12 +406,13 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
         // pending, its colour joining the sum in sample order; the dispatch
         // pauses once past the budget.
         if (light >= lightCount) {
-            if (top == 0u) {
+            if (!haveNext && top == 0u) {
                 sum += color;
                 color = vec3(0.0);
 #if VKRAY_ANTIALIAS
                 if (++sampleIndex == samples) break;
-                pushRay(top, primaryTask(sampleIndex));
+                nextRay = primaryTask(sampleIndex);
+                haveNext = true;
 #else
                 // One sample a pixel: no next ray to make (were there one, it
                 // would start in the next dispatch, the ray not done).
@@ -420,5 +423,8 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
             if (loopTurns >= budget) break;
         }
     }
+#if VKRAY_RAY_STACK
+    if (haveNext) pushRay(top, nextRay);  // paused: it waits for the next dispatch
+#endif
     ray = GpuRayProgress(vec4(sum, uintBitsToFloat(sampleIndex)), vec4(color, uintBitsToFloat(top)));
 }

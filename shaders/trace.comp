@@ -32,7 +32,10 @@ layout(local_size_x = VKRAY_WORKGROUP_X, local_size_y = VKRAY_WORKGROUP_Y, local
 layout(local_size_x = WORKGROUP_X, local_size_y = WORKGROUP_Y, local_size_z = 1) in;
 #endif
 
-layout(std140, set = 0, binding = BINDING_FRAME) uniform FrameBlock { FrameParams frameBlock; };
+// The frame's and the dispatch's parameters: storage buffers, which lavapipe
+// does not inline (layout.h, TileParams).
+layout(std430, set = 0, binding = BINDING_FRAME) readonly buffer FrameBlock { FrameParams frameBlock; };
+layout(std430, set = 0, binding = BINDING_TILE) readonly buffer TileBlock { TileParams tileBlock; };
 // The tile's pixels and each ray's progress as texels, GpuPixel and
 // GpuRayProgress bit for bit: on llvmpipe an imageLoad or imageStore is a few
 // vector loads or stores under the lane mask, where a storage-buffer access
@@ -47,7 +50,6 @@ layout(set = 0, binding = BINDING_RAY_GROUPS, r32ui) uniform readonly uimageBuff
 layout(set = 0, binding = BINDING_PROGRESS, rgba32ui) uniform uimageBuffer progressTexels;
 #endif
 layout(std430, set = 0, binding = BINDING_STATUS) buffer StatusBlock { GpuDispatchStatus status; };
-layout(push_constant) uniform TileBlock { TileParams tileBlock; };
 #if VKRAY_DEBUG_PIXEL
 layout(std430, set = 0, binding = BINDING_DEBUG) writeonly buffer DebugBlock {
     GpuDebugHeader debugHeader;
@@ -61,8 +63,8 @@ layout(std430, set = 0, binding = BINDING_DOUBLE_CAMERA) readonly buffer DoubleC
 GpuDoubleCamera doubleCamera;
 #endif
 // Copies of the frame's and the tile's parameters, made at the top of
-// main(): llvmpipe reads a uniform or push constant inside any if or loop as
-// 8 scalar loads a component, and one outside them once (docs/lavapipe.md).
+// main(): llvmpipe reads a buffer inside any if or loop as a loop over its 8
+// lanes, and outside them with one scalar load (docs/lavapipe.md).
 FrameParams frame;
 TileParams tileParams;
 
@@ -396,7 +398,7 @@ void main() {
     }
 #endif
 
-    // The canary: a loop of work.z turns (a push constant, so that no
+    // The canary: a loop of work.z turns (read from a buffer, so that no
     // compiler can unroll it) runs short only if the driver's loop limit
     // was reached in this invocation; then the dispatch is not to be trusted.
     uint canary = 0u;

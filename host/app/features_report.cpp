@@ -52,6 +52,7 @@ std::string bufferSize(std::uint32_t binding, const gpu::GpuScene& packed, const
     case BINDING_PROGRESS:
         return "one tile of " + std::to_string(sizeof(GpuRayProgress)) + "-byte ray states";
     case BINDING_STATUS: return std::to_string(sizeof(GpuDispatchStatus)) + " bytes";
+    case BINDING_TILE: return std::to_string(sizeof(TileParams)) + " bytes";
     case BINDING_RAY_STACK:
         return "one tile of " + std::to_string(pendingRayEntries(scene)) + "-entry stacks of " +
                std::to_string(doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask)) +
@@ -210,9 +211,7 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     for (const gpu::ShaderBinding& b : gpu::bindingsFor(features)) {
         char line[96];
         std::snprintf(line, sizeof line, "  %2u %-24s %-8s ", b.binding, b.name,
-                      b.kind == gpu::BindingKind::Uniform   ? "uniform"
-                      : b.kind == gpu::BindingKind::Storage ? "storage"
-                                                            : "texels");
+                      b.kind == gpu::BindingKind::Storage ? "storage" : "texels");
         out << line << bufferSize(b.binding, packed, scene, features.doubles) << "\n";
     }
     return out.str();

@@ -55,7 +55,6 @@ DeviceLimits deviceLimits(const DeviceInfo& device) {
     limits.deviceName = device.name;
     limits.maxStorageBufferRange =
         lowerByEnvironment("VKRAY_MAX_BUFFER_BYTES", device.maxStorageBufferRange);
-    limits.maxUniformBufferRange = device.maxUniformBufferRange;
     limits.maxTexelBufferElements =
         lowerByEnvironment("VKRAY_MAX_TEXELS", device.maxTexelBufferElements);
     limits.maxMemoryAllocationSize = device.maxMemoryAllocationSize;
@@ -73,17 +72,16 @@ void checkBufferNeeds(const std::vector<BufferNeed>& needs, const DeviceLimits& 
         // Vulkan forbids empty buffers: an empty array still takes one item.
         const std::uint64_t items = std::max<std::uint64_t>(need.count, 1);
         const std::uint64_t bytes = items * need.itemBytes;
-        const std::uint64_t range =
-            need.uniform ? limits.maxUniformBufferRange : limits.maxStorageBufferRange;
-        const char* rangeName = need.uniform ? "maxUniformBufferRange" : "maxStorageBufferRange";
+        const std::uint64_t range = limits.maxStorageBufferRange;
+        const char* rangeName = "maxStorageBufferRange";
         // A texel buffer's bound is its texel count (below), not a buffer range.
         const bool overRange = need.texelBytes == 0 && bytes > range;
         if (overRange ||
             (limits.maxMemoryAllocationSize && bytes > limits.maxMemoryAllocationSize)) {
             const std::uint64_t limit = overRange ? range : limits.maxMemoryAllocationSize;
             throw Error("the scene's " + std::to_string(need.count) + " " + need.what + " need " +
-                        bytesText(bytes) + " in one " + (need.uniform ? "uniform" : "storage") +
-                        " buffer; " + limits.deviceName + " allows at most " +
+                        bytesText(bytes) + " in one storage buffer; " + limits.deviceName +
+                        " allows at most " +
                         bytesText(limit, overRange ? rangeName : "maxMemoryAllocationSize") +
                         ", room for " + std::to_string(limit / need.itemBytes) + " " + need.what +
                         ". " + need.advice + ", or render with --cpu (no such limit)");

@@ -1,6 +1,6 @@
 // What a scene asks of the Vulkan device, checked against what the device
 // allows before anything is allocated: each buffer against the largest
-// storage (or uniform) buffer, texel-buffer view and allocation, their sum against the memory
+// storage buffer, texel-buffer view and allocation, their sum against the memory
 // heap, each dispatch against the largest workgroup count. A scene beyond a
 // limit is refused with the count that is too big, the limit, and what to do.
 // Pure functions over plain numbers, so the tests need no device.
@@ -18,7 +18,6 @@ namespace vkray::gpu {
 struct DeviceLimits {
     std::string deviceName;
     std::uint64_t maxStorageBufferRange = 0;
-    std::uint64_t maxUniformBufferRange = 0;
     std::uint64_t maxTexelBufferElements = 0;  // texels in one texel-buffer view
     std::uint64_t maxMemoryAllocationSize = 0;
     std::uint64_t memoryHeapBytes = 0;  // the heap vkray's (host-visible) buffers live in
@@ -39,7 +38,6 @@ struct BufferNeed {
     std::string what;
     std::size_t count = 0;
     std::size_t itemBytes = 0;
-    bool uniform = false;  // a uniform buffer (else storage)
     std::string advice;
     std::size_t texelBytes = 0;  // read through a texel buffer of texels this size (0: not)
 };

@@ -116,8 +116,7 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
         bindings.push_back({b.binding, descriptorTypeOf(b.kind)});
     auto p = std::make_unique<Pipeline>(
         Pipeline{stats.shader.key, workgroupX, workgroupY,
-                 ComputePipeline(context_.impl(), stats.shader.spirv, std::move(bindings),
-                                 sizeof(TileParams))});
+                 ComputePipeline(context_.impl(), stats.shader.spirv, std::move(bindings), 0)});
     if (pipelines_.size() == kPipelinesKept) pipelines_.erase(pipelines_.begin());
     pipelines_.push_back(std::move(p));
     return *pipelines_.back();

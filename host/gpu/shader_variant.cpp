@@ -159,7 +159,8 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
     // The same conditions as the #if around each binding in trace.comp and
     // the files it includes (the test ShaderVariant.BindingsMatchTheSpirv checks).
     using enum BindingKind;
-    std::vector<ShaderBinding> bindings{{BINDING_FRAME, "frame", Uniform},
+    std::vector<ShaderBinding> bindings{{BINDING_FRAME, "frame", Storage},
+                                        {BINDING_TILE, "tile", Storage},
                                         {BINDING_OBJECTS, "objects", Texels},
                                         {BINDING_MATERIALS, "materials", Texels}};
     if (features.lights || features.has(Shading::Shadows))

@@ -106,8 +106,8 @@ std::string describe(const ShaderFeatures& features);
 
 // How the shader reads a binding (shaders/layout.h, "Descriptor bindings").
 enum class BindingKind {
-    Uniform,     // a uniform buffer
-    Storage,     // a storage buffer (what the shader writes, and the fp64 camera)
+    Storage,     // a storage buffer (what the shader writes; the frame's, the tile's
+                 // and fp64's camera parameters)
     Texels,      // a read-only storage texel buffer, rgba32ui (uimageBuffer)
     UintTexels,  // the same, r32ui
 };

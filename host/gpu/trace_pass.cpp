@@ -25,7 +25,6 @@ struct BindingUse {
 BindingUse useOf(BindingKind kind) {
     using Usage = vk::BufferUsageFlagBits;
     switch (kind) {
-    case BindingKind::Uniform: return {vk::DescriptorType::eUniformBuffer, Usage::eUniformBuffer};
     case BindingKind::Storage: return {vk::DescriptorType::eStorageBuffer, Usage::eStorageBuffer};
     case BindingKind::Texels:
         return {vk::DescriptorType::eStorageTexelBuffer, Usage::eStorageTexelBuffer,
@@ -58,35 +57,34 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     for (const ShaderBinding& b : bindingsFor(features)) kinds[b.binding] = b.kind;
     // A scene array: a texel buffer, its texels those of its binding's kind.
     const auto need = [&](uint binding, const char* what, const auto& items, const char* advice) {
-        return BufferNeed{what,  items.size(), sizeof(items[0]),
-                          false, advice,       useOf(kinds.at(binding)).texelBytes};
+        return BufferNeed{what, items.size(), sizeof(items[0]), advice,
+                          useOf(kinds.at(binding)).texelBytes};
     };
     const char* fewerObjects = "Use fewer objects";
     const char* smallerMeshes = "Use fewer or smaller meshes";
     std::vector<BufferNeed> needs{
-        {"frame parameters", 1, sizeof(FrameParams), true, "Use another --device"},
+        {"frame parameters", 1, sizeof(FrameParams), "Use another --device"},
         need(BINDING_OBJECTS, "objects", packed.objects, fewerObjects),
         need(BINDING_MATERIALS, "materials", packed.materials, fewerObjects),
     };
     // Each tile in flight has its own.
     for (size_t slot = 0; slot < slots; ++slot) {
-        needs.push_back({"tile pixels", tilePixels, sizeof(GpuPixel), false,
-                         "Use a smaller --block", sizeof(uvec4)});
         needs.push_back(
-            {"ray groups", tileGroups, sizeof(uint), false, "Use a smaller --block", sizeof(uint)});
+            {"tile pixels", tilePixels, sizeof(GpuPixel), "Use a smaller --block", sizeof(uvec4)});
+        needs.push_back(
+            {"ray groups", tileGroups, sizeof(uint), "Use a smaller --block", sizeof(uint)});
         if (kinds.count(BINDING_PROGRESS))
-            needs.push_back({"ray progress", tileRays, sizeof(GpuRayProgress), false,
+            needs.push_back({"ray progress", tileRays, sizeof(GpuRayProgress),
                              "Use a smaller --block", sizeof(uvec4)});
         if (pendingRays > 0)
             needs.push_back({"pending rays", pendingRays,
-                             doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask), false,
+                             doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask),
                              "Use a smaller maxRecursionDepth", sizeof(uvec4)});
         if (features.debugPixel)
-            needs.push_back(
-                {"debug entries", debugEntries, sizeof(GpuDebugEntry), false, fewerObjects});
+            needs.push_back({"debug entries", debugEntries, sizeof(GpuDebugEntry), fewerObjects});
         if (features.stressOutput)
-            needs.push_back({"stress output", tilePixels, sizeof(GpuStressSample), false,
-                             "Use a smaller image"});
+            needs.push_back(
+                {"stress output", tilePixels, sizeof(GpuStressSample), "Use a smaller image"});
     }
     if (kinds.count(BINDING_LIGHTS))
         needs.push_back(need(BINDING_LIGHTS, "lights", packed.lights, "Use fewer lights"));
@@ -138,7 +136,7 @@ namespace {
 
 // The bindings the shader writes: each tile in flight has its own.
 bool perTile(uint binding) {
-    return binding == BINDING_PIXELS || binding == BINDING_RAY_GROUPS ||
+    return binding == BINDING_PIXELS || binding == BINDING_RAY_GROUPS || binding == BINDING_TILE ||
            binding == BINDING_PROGRESS || binding == BINDING_STATUS ||
            binding == BINDING_RAY_STACK || binding == BINDING_DEBUG ||
            binding == BINDING_STRESS_OUTPUT;
@@ -255,6 +253,7 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
         if (kinds_.count(BINDING_PROGRESS))
             allocate(BINDING_PROGRESS, sizeof(GpuRayProgress) * tileRays, s);
         add(BINDING_STATUS, std::vector<GpuDispatchStatus>(1), s);
+        add(BINDING_TILE, std::vector<TileParams>(1), s);
         if (rayStack)
             allocate(BINDING_RAY_STACK,
                      pendingRays * (doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask)), s);
@@ -407,6 +406,7 @@ void TracePass::submit(Slot& s, bool first) {
     s.params.work.y = first ? 1u : 0u;
     const GpuDispatchStatus zero{};
     buffer(BINDING_STATUS, int(&s - slots_.data())).upload(&zero, sizeof zero);
+    buffer(BINDING_TILE, int(&s - slots_.data())).upload(&s.params, sizeof s.params);
     const vk::raii::CommandBuffer& commands = s.commands;
     commands.reset();
     commands.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
@@ -423,8 +423,6 @@ void TracePass::submit(Slot& s, bool first) {
     commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.compute.pipeline);
     commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.compute.layout, 0,
                                 *s.descriptors->set, nullptr);
-    commands.pushConstants<TileParams>(*pipeline_.compute.layout, vk::ShaderStageFlagBits::eCompute,
-                                       0, s.params);
     if (*s.timestamps) {
         commands.resetQueryPool(*s.timestamps, 0, 2);
         // Written once earlier dispatches (the other slot's) are done with

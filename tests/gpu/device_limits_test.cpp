@@ -16,8 +16,7 @@ DeviceLimits smallDevice() {
     DeviceLimits limits;
     limits.deviceName = "tiny GPU";
     limits.maxStorageBufferRange = 1 << 20;  // 1 MiB
-    limits.maxUniformBufferRange = 16384;
-    limits.maxTexelBufferElements = 65536;  // Vulkan's least
+    limits.maxTexelBufferElements = 65536;   // Vulkan's least
     limits.maxMemoryAllocationSize = 1 << 30;
     limits.memoryHeapBytes = 8 << 20;  // 8 MiB
     limits.maxWorkgroupCount[0] = limits.maxWorkgroupCount[1] = 65535;
@@ -34,7 +33,7 @@ std::string refusal(const std::vector<BufferNeed>& needs, const DeviceLimits& li
 }
 
 TEST(DeviceLimits, BufferWithinItsRangeIsAccepted) {
-    EXPECT_NO_THROW(checkBufferNeeds({{"triangles", 10922, 96, false, "Use smaller meshes"}},
+    EXPECT_NO_THROW(checkBufferNeeds({{"triangles", 10922, 96, "Use smaller meshes"}},
                                      smallDevice()));  // 1048512 bytes <= 1 MiB
 }
 
@@ -43,8 +42,8 @@ TEST(DeviceLimits, BufferWithinItsRangeIsAccepted) {
 TEST(DeviceLimits, TexelBufferBeyondItsElementsNamesCountLimitAndAdvice) {
     DeviceLimits limits = smallDevice();
     limits.maxStorageBufferRange = 1 << 30;
-    const BufferNeed within{"triangles", 10922, 96, false, "Use smaller meshes", 16};
-    const BufferNeed beyond{"triangles", 10923, 96, false, "Use smaller meshes", 16};
+    const BufferNeed within{"triangles", 10922, 96, "Use smaller meshes", 16};
+    const BufferNeed beyond{"triangles", 10923, 96, "Use smaller meshes", 16};
     EXPECT_NO_THROW(checkBufferNeeds({within}, limits));  // 65 532 texels
     const std::string message = refusal({beyond}, limits);
     EXPECT_NE(message.find("10923 triangles need 65538 texels"), std::string::npos) << message;
@@ -56,10 +55,9 @@ TEST(DeviceLimits, TexelBufferBeyondItsElementsNamesCountLimitAndAdvice) {
 }
 
 TEST(DeviceLimits, StorageBufferBeyondItsRangeNamesCountLimitAndAdvice) {
-    const std::string message =
-        refusal({{"objects", 10, 128, false, "Use fewer objects"},
-                 {"triangles", 10923, 96, false, "Use fewer or smaller meshes"}},
-                smallDevice());
+    const std::string message = refusal({{"objects", 10, 128, "Use fewer objects"},
+                                         {"triangles", 10923, 96, "Use fewer or smaller meshes"}},
+                                        smallDevice());
     EXPECT_NE(message.find("the scene's 10923 triangles need 1048608 bytes (1.0 MiB) in one "
                            "storage buffer"),
               std::string::npos)
@@ -72,17 +70,10 @@ TEST(DeviceLimits, StorageBufferBeyondItsRangeNamesCountLimitAndAdvice) {
         << message;
 }
 
-TEST(DeviceLimits, UniformBufferIsCheckedAgainstTheUniformRange) {
-    const std::string message =
-        refusal({{"frame parameters", 1, 20000, true, "Use another --device"}}, smallDevice());
-    EXPECT_NE(message.find("maxUniformBufferRange"), std::string::npos) << message;
-    EXPECT_NE(message.find("16384 bytes"), std::string::npos) << message;
-}
-
 TEST(DeviceLimits, AllocationLimitAppliesWhenBelowTheRange) {
     DeviceLimits limits = smallDevice();
     limits.maxMemoryAllocationSize = 4096;
-    const std::string message = refusal({{"objects", 64, 128, false, "Use fewer objects"}}, limits);
+    const std::string message = refusal({{"objects", 64, 128, "Use fewer objects"}}, limits);
     EXPECT_NE(message.find("maxMemoryAllocationSize"), std::string::npos) << message;
     EXPECT_NE(message.find("room for 32 objects"), std::string::npos) << message;
 }
@@ -90,8 +81,8 @@ TEST(DeviceLimits, AllocationLimitAppliesWhenBelowTheRange) {
 TEST(DeviceLimits, TotalBeyondTheHeapIsRefusedWithTheLargeParts) {
     // Eight buffers of 1 MiB each (all within the range) plus small ones: over 8 MiB.
     std::vector<BufferNeed> needs;
-    for (int i = 0; i < 8; ++i) needs.push_back({"triangles", 10922, 96, false, "x"});
-    needs.push_back({"lights", 3, 32, false, "x"});
+    for (int i = 0; i < 8; ++i) needs.push_back({"triangles", 10922, 96, "x"});
+    needs.push_back({"lights", 3, 32, "x"});
     const std::string message = refusal(needs, smallDevice());
     EXPECT_NE(message.find("the scene needs about"), std::string::npos) << message;
     EXPECT_NE(message.find("of device memory (triangles 1048512 bytes, triangles"),
@@ -108,7 +99,7 @@ TEST(DeviceLimits, TotalBeyondTheHeapIsRefusedWithTheLargeParts) {
 TEST(DeviceLimits, EmptyArraysStillTakeOneItem) {
     DeviceLimits limits = smallDevice();
     limits.maxStorageBufferRange = 100;
-    EXPECT_NE(refusal({{"CSG nodes", 0, 128, false, "x"}}, limits), "");
+    EXPECT_NE(refusal({{"CSG nodes", 0, 128, "x"}}, limits), "");
 }
 
 TEST(DeviceLimits, TileShrinksToFitThePixelBufferAndWorkgroupCount) {
@@ -148,13 +139,11 @@ TEST(DeviceLimits, EnvironmentHooksOnlyLower) {
     DeviceInfo device;
     device.name = "dev";
     device.maxStorageBufferRange = 1000;
-    device.maxUniformBufferRange = 500;
     device.memoryHeapBytes = 5000;
     ::setenv("VKRAY_MAX_BUFFER_BYTES", "100", 1);
     ::setenv("VKRAY_DEVICE_MEMORY_BYTES", "99999", 1);
     DeviceLimits limits = deviceLimits(device);
     EXPECT_EQ(limits.maxStorageBufferRange, 100u);
-    EXPECT_EQ(limits.maxUniformBufferRange, 500u);
     EXPECT_EQ(limits.memoryHeapBytes, 5000u);  // never raised
     ::setenv("VKRAY_MAX_BUFFER_BYTES", "lots", 1);
     EXPECT_THROW(deviceLimits(device), Error);
