@@ -172,12 +172,17 @@ void TracePass::add(uint binding, const std::vector<T>& items, int slot) {
 }
 
 void TracePass::copyStaged() {
-    if (staged_.empty()) return;
+    if (staged_.empty() && zeroed_.empty()) return;
     const vk::raii::CommandBuffer& commands = slots_[0].commands;
     commands.reset();
     commands.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     for (const Staged& s : staged_)
         commands.copyBuffer(s.from->buffer(), s.to, vk::BufferCopy(0, 0, s.bytes));
+    // Written once before any dispatch: on lavapipe, device memory is memory
+    // no one has touched, and a shader's first write to a page it has read
+    // faults, and makes the kernel flush every thread's TLB (IPIs), a few
+    // per cent of a render that keeps rays between dispatches.
+    for (const vk::Buffer buffer : zeroed_) commands.fillBuffer(buffer, 0, VK_WHOLE_SIZE, 0);
     // The copies must land before the first dispatch reads them.
     vk::MemoryBarrier copied(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eShaderRead);
     commands.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer,
@@ -186,6 +191,7 @@ void TracePass::copyStaged() {
     commands.end();
     submitAndWait(c_, vk::SubmitInfo({}, {}, *commands), slots_[0].fence, "the scene's upload");
     staged_.clear();
+    zeroed_.clear();
 }
 
 BindingKind TracePass::kindOf(uint binding) const {
@@ -201,9 +207,11 @@ HostBuffer& TracePass::buffer(uint binding, int slot) const {
 
 void TracePass::allocate(uint binding, size_t bytes, int slot) {
     const BindingKind kind = kindOf(binding);
-    slots_[size_t(slot)].buffers.emplace(
-        binding,
-        std::make_unique<HostBuffer>(c_, bytes, useOf(kind).usage, memoryOf(binding, kind)));
+    auto buffer = std::make_unique<HostBuffer>(
+        c_, bytes, useOf(kind).usage | vk::BufferUsageFlagBits::eTransferDst,
+        memoryOf(binding, kind));
+    zeroed_.push_back(buffer->buffer());
+    slots_[size_t(slot)].buffers.emplace(binding, std::move(buffer));
 }
 
 TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,

@@ -145,7 +145,8 @@ private:
         vk::Buffer to;                     // device-local
         vk::DeviceSize bytes;
     };
-    std::vector<Staged> staged_;  // until copyStaged()
+    std::vector<Staged> staged_;      // until copyStaged()
+    std::vector<vk::Buffer> zeroed_;  // what the shader alone writes, filled by copyStaged()
     std::vector<Slot> slots_;
 };
 
