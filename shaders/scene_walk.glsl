@@ -21,16 +21,16 @@ real reach(real t, bool feeler) {
     return feeler ? t : t * (1.0 + TIE_TOLERANCE);
 }
 
-// Tests object `index` for a scene walk (walkScene): a closer hit replaces
+// Tests object `index`, of shape `kind`, for a scene walk (walkScene): a closer hit replaces
 // `hit`; for a shadow feeler (VKRAY_SHADOWS), any hit before hit.t passes the
 // surface's transparency into `through`.
-void testObject(uint index, rvec3 origin, rvec3 direction, bool feeler, inout Hit hit,
+void testObject(uint index, uint kind, rvec3 origin, rvec3 direction, bool feeler, inout Hit hit,
                 inout float through) {
     real t;
     rvec3 n, geometric;
     uint surface;
     real tMax = reach(hit.t, feeler);
-    bool met = intersectObject(index, origin, direction, tMax, t, n, geometric, surface);
+    bool met = intersectObject(index, kind, origin, direction, tMax, t, n, geometric, surface);
 #if VKRAY_STRESS_OUTPUT
     stressNoteTest(index, feeler, met);
 #endif
@@ -90,7 +90,8 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
     while (through > 0.0) {
         loopTurns += leafCount;
         for (uint i = leafFirst; i < leafFirst + leafCount && through > 0.0; ++i)
-            testObject(objectAt(i), origin, direction, feeler, hit, through);
+            testObject(objectAt(i), objectShape(objectAt(i)).x, origin, direction, feeler, hit,
+                       through);
         leafCount = 0u;
         bool walking = false;  // `children` is the first of the two to test next
         uint children = 0u;
@@ -132,17 +133,23 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
         if (leafCount == 0u) break;
     }
 #elif VKRAY_OBJECTS > 0
-    // A few objects, as many as the host counted: a loop of constant trip
-    // count, which lavapipe unrolls, where a loop over a count read at run
-    // time costs several object tests a ray (BENCHMARKS.md). A feeler that
-    // is already stopped (through 0) stays stopped.
+    // A few objects, as many as the host counted, each of the shape the host
+    // named (VKRAY_OBJECT_KINDS): the loop unrolled, each test holds the code
+    // of its object's shape alone, where a loop over a count read at run time
+    // costs several object tests a ray and each test every shape's code
+    // (BENCHMARKS.md). A feeler that is already stopped (through 0) stays
+    // stopped.
+#ifndef VKRAY_OBJECT_KINDS
+#error "VKRAY_OBJECT_KINDS is not defined: an unrolled walk (VKRAY_OBJECTS > 0) needs each object's KIND_*"
+#endif
+    const uint kinds[VKRAY_OBJECTS] = uint[](VKRAY_OBJECT_KINDS);
     loopTurns += VKRAY_OBJECTS;
-    for (uint i = 0u; i < VKRAY_OBJECTS; ++i)
-        testObject(i, origin, direction, feeler, hit, through);
+    [[unroll]] for (uint i = 0u; i < VKRAY_OBJECTS; ++i)
+        testObject(i, kinds[i], origin, direction, feeler, hit, through);
 #else
     loopTurns += frame.image.w;
     for (uint i = 0u; i < frame.image.w && through > 0.0; ++i)
-        testObject(i, origin, direction, feeler, hit, through);
+        testObject(i, objectShape(i).x, origin, direction, feeler, hit, through);
 #endif
     if (!feeler && hit.object < 0) hit.t = INFINITY;
 }

@@ -17,6 +17,7 @@
 // selects the textbook float formulas (precision.glsl).
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "variant_flags.glsl"
 #include "layout.h"
@@ -166,9 +167,11 @@ struct Hit {
     rvec3 geometricNormal;  // the same, but a mesh's triangle's own instead of the interpolated
 };
 
-// The nearest hit of object `index` in (0, tMax); for a CSG object, the
-// primitive whose surface it is. `geometric` differs from n only on meshes.
-bool intersectObject(uint index, rvec3 origin, rvec3 direction, real tMax, out real t,
+// The nearest hit of object `index`, of shape `kind` (KIND_*), in (0, tMax);
+// for a CSG object, the primitive whose surface it is. `geometric` differs
+// from n only on meshes. Where the kind is a constant (an unrolled walk),
+// the compiler leaves only that shape's code.
+bool intersectObject(uint index, uint kind, rvec3 origin, rvec3 direction, real tMax, out real t,
                      out rvec3 n, out rvec3 geometric, out uint surface) {
 #if VKRAY_PRECISION_NAIVE
     const real tMin = NAIVE_EPSILON;  // the textbook's fixed epsilon, on every ray
@@ -176,12 +179,11 @@ bool intersectObject(uint index, rvec3 origin, rvec3 direction, real tMax, out r
     const real tMin = 0.0;  // robust: secondary rays start off the surface (offsetOrigin)
 #endif
     surface = index;
-    uvec4 shape = objectShape(index);
 #if VKRAY_CSG
-    if (shape.x == KIND_BOOLEAN) {
+    if (kind == KIND_BOOLEAN) {
         // Meshes in CSG are convex (the host checks): their spans carry the
         // interpolated normal only.
-        bool hit = intersectCsg(shape.y, origin, direction, tMin, tMax, t, n, surface);
+        bool hit = intersectCsg(objectShape(index).y, origin, direction, tMin, tMax, t, n, surface);
         geometric = n;
         return hit;
     }
@@ -189,11 +191,11 @@ bool intersectObject(uint index, rvec3 origin, rvec3 direction, real tMax, out r
     rvec3 o, d;
     toObjectSpace(index, origin, direction, o, d);
 #if VKRAY_SHAPE_MESH
-    if (shape.x == KIND_MESH)
-        return intersectMesh(shape.y, o, d, tMin, tMax, t, n, geometric);
+    if (kind == KIND_MESH)
+        return intersectMesh(objectShape(index).y, o, d, tMin, tMax, t, n, geometric);
 #endif
     bool hit = false;
-    switch (shape.x) {
+    switch (kind) {
 #if VKRAY_SHAPE_SPHERE
     case KIND_SPHERE: hit = intersectSphere(o, d, tMin, tMax, t, n); break;
 #endif
@@ -282,7 +284,8 @@ void recordObjectTests(rvec3 origin, rvec3 direction) {
         toObjectSpace(i, origin, direction, o, d);
         real t;
         uint surface;
-        if (!intersectObject(i, origin, direction, INFINITY, t, n, geometric, surface)) t = INFINITY;
+        if (!intersectObject(i, objectShape(i).x, origin, direction, INFINITY, t, n, geometric, surface))
+            t = INFINITY;
         debugEntries[i] = GpuDebugEntry(vec4(o, t), vec4(d, 0.0));
     }
 }

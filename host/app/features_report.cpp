@@ -149,7 +149,7 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
         << " bounded objects; more than " << gpu::kObjectBvhThreshold << " get one)";
     if (features.unrolledObjects > 0)
         out << "; each object tested in turn, the loop unrolled over the "
-            << features.unrolledObjects;
+            << features.unrolledObjects << ", each test its object's shape's code alone";
     out << "\n";
     out << "lights: " << scene.lights.size() << "\n";
     std::map<int, int> textures;

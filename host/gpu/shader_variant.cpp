@@ -90,8 +90,11 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
     const bool closedForm =
         !features.kinds[KIND_TORUS] && !features.kinds[KIND_MESH] && !features.kinds[KIND_BOOLEAN];
     if (!allFeatures && !features.objectBvh && closedForm &&
-        scene.objects.size() <= kObjectBvhThreshold)
+        scene.objects.size() <= kObjectBvhThreshold) {
         features.unrolledObjects = std::uint32_t(scene.objects.size());
+        for (const SceneObject& object : scene.objects)
+            features.objectKinds.push_back(gpuKindOf(object.type));
+    }
     return features;
 }
 
@@ -112,6 +115,12 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines) {
     defines.emplace_back("VKRAY_DEBUG_PIXEL", flag(features.debugPixel));
     defines.emplace_back("VKRAY_STRESS_OUTPUT", flag(features.stressOutput));
     defines.emplace_back("VKRAY_OBJECTS", std::to_string(features.unrolledObjects));
+    if (features.unrolledObjects > 0) {
+        std::string kinds;
+        for (const std::uint32_t kind : features.objectKinds)
+            kinds += (kinds.empty() ? "" : ",") + std::to_string(kind) + "u";
+        defines.emplace_back("VKRAY_OBJECT_KINDS", kinds);
+    }
     // A test hook, never set otherwise (gpu/context.h, VKRAY_FAULT=no-offset).
     defines.emplace_back("VKRAY_FAULT_NO_OFFSET", flag(injectedFault() == Fault::NoOffset));
     defines.insert(defines.end(), userDefines.begin(), userDefines.end());

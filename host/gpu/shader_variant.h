@@ -72,6 +72,9 @@ struct ShaderFeatures {
     // turn in a loop it unrolls (a few objects, no BVH, closed-form shapes
     // only); 0: a loop over the count read at run time.
     std::uint32_t unrolledObjects = 0;
+    // VKRAY_OBJECT_KINDS: with an unrolled walk, each object's KIND_*, in
+    // order: each test holds its object's shape's code alone.
+    std::vector<std::uint32_t> objectKinds;
 
     bool has(Shading s) const { return shading[size_t(s)]; }
     bool operator==(const ShaderFeatures&) const = default;

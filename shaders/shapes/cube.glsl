@@ -24,23 +24,32 @@ bool cubeSpan(rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real t1, out rvec
     return true;
 }
 #else
-// Robust: zero direction components handled before dividing.
+// Robust: zero direction components handled before dividing. Each slab in
+// a call of its own, not a loop: a loop that returns from its body is not
+// unrolled, and a scene of a few objects would lose the unrolled walk
+// (VKRAY_OBJECTS) that the cube's loop sits in.
+void cubeSlab(real o, real d, int axis, inout real t0, inout real t1, inout int enterAxis,
+              inout int exitAxis, inout bool outside) {
+    if (d == 0.0) {
+        outside = outside || abs(o) > 1.0;
+        return;
+    }
+    real inv = 1.0 / d;
+    real tNear = (-sign(d) - o) * inv;
+    real tFar = (sign(d) - o) * inv;
+    if (tNear > t0) { t0 = tNear; enterAxis = axis; }
+    if (tFar < t1) { t1 = tFar; exitAxis = axis; }
+}
+
 bool cubeSpan(rvec3 o, rvec3 d, out real t0, out rvec3 n0, out real t1, out rvec3 n1) {
     t0 = -1.0 / 0.0;
     t1 = 1.0 / 0.0;
     int enterAxis = 0, exitAxis = 0;
-    for (int i = 0; i < 3; ++i) {
-        if (d[i] == 0.0) {
-            if (abs(o[i]) > 1.0) return false;
-            continue;
-        }
-        real inv = 1.0 / d[i];
-        real tNear = (-sign(d[i]) - o[i]) * inv;
-        real tFar = (sign(d[i]) - o[i]) * inv;
-        if (tNear > t0) { t0 = tNear; enterAxis = i; }
-        if (tFar < t1) { t1 = tFar; exitAxis = i; }
-    }
-    if (t0 > t1) return false;
+    bool outside = false;
+    cubeSlab(o.x, d.x, 0, t0, t1, enterAxis, exitAxis, outside);
+    cubeSlab(o.y, d.y, 1, t0, t1, enterAxis, exitAxis, outside);
+    cubeSlab(o.z, d.z, 2, t0, t1, enterAxis, exitAxis, outside);
+    if (outside || t0 > t1) return false;
     n0 = rvec3(0.0);
     n0[enterAxis] = -sign(d[enterAxis]);
     n1 = rvec3(0.0);

@@ -48,7 +48,7 @@ TEST_F(Features, DefaultSceneReport) {
     EXPECT_EQ(field(run.output, "meshes"), "none");
     EXPECT_EQ(field(run.output, "object BVH"),
               "no (4 bounded objects; more than 8 get one); each object tested in turn, "
-              "the loop unrolled over the 5");
+              "the loop unrolled over the 5, each test its object's shape's code alone");
     EXPECT_EQ(field(run.output, "lights"), "3");
     EXPECT_EQ(field(run.output, "shadows"), "yes (3 lights, 5 objects)");
     EXPECT_EQ(field(run.output, "reflection"),
@@ -59,7 +59,8 @@ TEST_F(Features, DefaultSceneReport) {
               "sphere+plane+square+cube+shadows+aovs)");
     EXPECT_EQ(field(run.output, "defines"),
               "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_SQUARE=1 VKRAY_SHAPE_CUBE=1 "
-              "VKRAY_SHADOWS=1 VKRAY_LIGHTS=1 VKRAY_OBJECTS=5 (every other variant flag 0)");
+              "VKRAY_SHADOWS=1 VKRAY_LIGHTS=1 VKRAY_OBJECTS=5 VKRAY_OBJECT_KINDS=1u,0u,3u,0u,2u "
+              "(every other variant flag 0)");
     // GpuObjectGeometry is 4 vec4 (64 bytes), GpuMaterial 6 (96), GpuLight 2
     // (32), FrameParams 9 (144).
     const std::vector<std::string> expected{

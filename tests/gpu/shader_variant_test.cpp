@@ -121,6 +121,14 @@ TEST(ShaderVariant, AFewClosedFormObjectsAreTestedInAnUnrolledLoop) {
     EXPECT_NE(std::find(defines.begin(), defines.end(),
                         std::pair<std::string, std::string>("VKRAY_OBJECTS", "2")),
               defines.end());
+    // Each unrolled test is told its object's shape (KIND_SPHERE 0, KIND_CUBE 3).
+    EXPECT_NE(std::find(defines.begin(), defines.end(),
+                        std::pair<std::string, std::string>("VKRAY_OBJECT_KINDS", "0u,3u")),
+              defines.end());
+    const Defines looped = definesFor(featuresOfText(nine));
+    EXPECT_EQ(std::count_if(looped.begin(), looped.end(),
+                            [](const auto& d) { return d.first == "VKRAY_OBJECT_KINDS"; }),
+              0);
 }
 
 TEST(ShaderVariant, ShadowsWhereAFeelerCanMeetAnObject) {
