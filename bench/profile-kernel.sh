@@ -65,7 +65,7 @@ PROFILE_KERNEL_OUT="$out" perf record -q -e cpu-clock -F 5000 -o "$out/perf.data
   -ex 'break vkray::gpu::GpuTracer::~GpuTracer' -ex run -ex "source $out/dump.py" -ex kill \
   --args "$@" > "$out/command.log" 2>&1 || true
 if [ ! -s "$out/regions.txt" ]; then
-  echo "profile-kernel: the command rendered nothing on the GPU (no GpuTracer went); its output is in $out/command.log" >&2
+  echo "profile-kernel: no JIT code was mapped when the command's first GpuTracer went (did it render on the GPU?); its output is in $out/command.log" >&2
   exit 1
 fi
 perf script -i "$out/perf.data" -F comm,ip,dso > "$out/samples.txt" 2>/dev/null
