@@ -185,7 +185,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     const bool cover = options_.primaryCover && options_.precision != Precision::Naive &&
                        !features.stressOutput && !features.debugPixel;
     TracePass pass(context_.impl(), pipeline, features, features.doubles, scene, camera, settings,
-                   tile, cover, overlap ? 2 : 1);
+                   tile, {cover, bool(tileListener_)}, overlap ? 2 : 1);
     st.setupSeconds = setup.seconds() - st.shader.seconds;
 
     Frame frame(settings.width, settings.height);
@@ -207,21 +207,27 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
         if (tileListener_) tileListener_(TracedTile{piece, pass.pixelBuffer(slot)});
         const GpuPixel* pixels = pass.pixels(slot);
         const bool sample0 = settings.firstSample == 0;  // the id and AOVs were traced
-        for (int y = 0; y < h; ++y) {
-            for (int x = 0; x < w; ++x) {
-                const GpuPixel& p = pixels[size_t(y) * size_t(w) + size_t(x)];
-                const size_t i = frame.index(tx + x, ty + y);
-                frame.color[i] = {p.color.x, p.color.y, p.color.z};
-                if (!sample0) continue;
-                std::memcpy(&frame.id[i], &p.color.w, sizeof(std::int32_t));
-                if (features.aovs) {
-                    frame.depth[i] = p.normal.w;
-                    frame.normal[i] = {p.normal.x, p.normal.y, p.normal.z};
+        const auto take = [&](const GpuPixel& p, int x, int y) {
+            const size_t i = frame.index(tx + x, ty + y);
+            frame.color[i] = {p.color.x, p.color.y, p.color.z};
+            if (!sample0) return;
+            std::memcpy(&frame.id[i], &p.color.w, sizeof(std::int32_t));
+            if (!features.aovs) return;
+            frame.depth[i] = p.normal.w;
+            frame.normal[i] = {p.normal.x, p.normal.y, p.normal.z};
+        };
+        for (const TileRect& r : pass.missedPixels(slot))
+            for (int y = r.y; y < r.y + r.height; ++y)
+                for (int x = r.x; x < r.x + r.width; ++x) take(pass.missedPixel(), x, y);
+        for (const TileRect& r : pass.tracedPixels(slot)) {
+            for (int y = r.y; y < r.y + r.height; ++y) {
+                for (int x = r.x; x < r.x + r.width; ++x) {
+                    take(pixels[size_t(y) * size_t(w) + size_t(x)], x, y);
+                    if (stressSamples)
+                        (*stressSamples)[frame.index(tx + x, ty + y)] = decodeStressSample(
+                            pass.stressSamples(slot)[size_t(y) * size_t(w) + size_t(x)],
+                            features.doubles);
                 }
-                if (stressSamples)
-                    (*stressSamples)[i] = decodeStressSample(
-                        pass.stressSamples(slot)[size_t(y) * size_t(w) + size_t(x)],
-                        features.doubles);
             }
         }
         st.rays +=
@@ -289,7 +295,7 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
     features.stressOutput = true;
     const Pipeline& pipeline = pipelineFor(features, st);
     TracePass pass(context_.impl(), pipeline, features, features.doubles, scene, camera, oneSample,
-                   1, false);
+                   1, {});
     // A one-pixel tile at the corner of the pixel's block: its one ray is the block's.
     const int block = std::max(settings.block, 1);
     uint turnBudget = kTurnBudget;

@@ -110,7 +110,7 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
 }
 
 // The pixel of a ray that meets nothing.
-GpuPixel missedPixel(const glm::dvec3& background, bool aovs, uint samples, bool averaged) {
+GpuPixel missOf(const glm::dvec3& background, bool aovs, uint samples, bool averaged) {
     // As the shader makes it: each sample's colour is the background's float,
     // their sum in sample order divided by their count (in a variant of one
     // walk a pixel, the one sample's colour as it is).
@@ -216,20 +216,21 @@ void TracePass::allocate(uint binding, size_t bytes, int slot) {
 
 TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
                      bool doubles, const Scene& scene, const CameraBasis& camera,
-                     const RenderSettings& settings, int tile, bool cover, int slots)
+                     const RenderSettings& settings, int tile, Cover cover, int slots)
     : c_(c),
       pipeline_(pipeline),
       firstSample_(uint(settings.firstSample)),
       endSample_(uint(sampleEnd(settings))),
       cover_(settings),
+      missesInBuffer_(cover.missesInBuffer),
       slots_(size_t(std::max(slots, 1))) {
     GpuScene packed = packScene(scene, features);
-    if (cover)
+    if (cover.enabled)
         cover_ = PrimaryCover(coverShapesOf(scene, packed.objectBvh ? &*packed.objectBvh : nullptr),
                               camera, settings);
     packed.objectBvh.reset();
-    background_ = missedPixel(scene.background, features.aovs, endSample_ - firstSample_,
-                              !tracesOneWalk(features));
+    missed_ = missOf(scene.background, features.aovs, endSample_ - firstSample_,
+                     !tracesOneWalk(features));
     const size_t debugEntries = 4 + scene.objects.size() + scene.lights.size();
     const size_t raysPerSide = size_t((tile + settings.block - 1) / settings.block);
     const size_t tileRays = raysPerSide * raysPerSide;
@@ -349,29 +350,33 @@ void TracePass::start(int slot, int tx, int ty, int w, int h, int block, uint tu
                           {turnBudget, 1u, kCanaryTurns, raysX},
                           {firstSample_, endSample_, 0u, 0u}};
     // The workgroups whose rays may meet an object are dispatched; the
-    // others' pixels are the background's, written here.
+    // others' pixels are misses.
     const int groupX = int(pipeline_.workgroupX), groupY = int(pipeline_.workgroupY);
     HostBuffer& pixels = buffer(BINDING_PIXELS, slot);
     HostBuffer& groups = buffer(BINDING_RAY_GROUPS, slot);
     auto* tilePixels = static_cast<GpuPixel*>(pixels.data());
     auto* groupList = static_cast<uint*>(groups.data());
     s.groups = 0;
+    s.traced.clear();
+    s.missed.clear();
     for (int gy = 0; gy * groupY < int(raysY); ++gy) {
         for (int gx = 0; gx * groupX < int(raysX); ++gx) {
             // Its rays' blocks, which may reach past the tile at the image's edge.
             const int x0 = gx * groupX * block, y0 = gy * groupY * block;
-            const int x1 =
-                std::min(gx + 1, int(raysX + uint(groupX) - 1) / groupX) * groupX * block;
-            const int y1 =
-                std::min(gy + 1, int(raysY + uint(groupY) - 1) / groupY) * groupY * block;
+            const int x1 = std::min((gx + 1) * groupX, int(raysX)) * block;
+            const int y1 = std::min((gy + 1) * groupY, int(raysY)) * block;
             ++groups_;
+            const TileRect rect{x0, y0, std::min(x1, w) - x0, std::min(y1, h) - y0};
             if (cover_.mayHit(tx + x0, ty + y0, tx + x1, ty + y1)) {
                 groupList[s.groups++] = uint(gx) | (uint(gy) << RAY_GROUP_SHIFT);
+                s.traced.push_back(rect);
                 continue;
             }
+            s.missed.push_back(rect);
+            if (!missesInBuffer_) continue;
             for (int y = y0; y < std::min(y1, h); ++y)
                 for (int x = x0; x < std::min(x1, w); ++x)
-                    tilePixels[size_t(y) * size_t(w) + size_t(x)] = background_;
+                    tilePixels[size_t(y) * size_t(w) + size_t(x)] = missed_;
         }
     }
     groupsTraced_ += s.groups;

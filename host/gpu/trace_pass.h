@@ -8,6 +8,7 @@
 #include "gpu/shader_variant.h"
 #include "render/camera.h"
 #include "render/primary_cover.h"
+#include "render/tile_schedule.h"
 #include "scene/scene.h"
 #include "shaders/layout.h"
 
@@ -50,10 +51,16 @@ class TracePass {
 public:
     // doubles: the fp64 variant, which also reads the camera and M^-1 in double.
     // cover: dispatch only the workgroups whose primary rays may meet an
-    // object (render/primary_cover.h), the other pixels written as misses.
+    // object (render/primary_cover.h); the other pixels are misses
+    // (missedPixel()), written into the pixel buffer too when
+    // missesInBuffer (what reads the buffer itself wants every pixel there).
+    struct Cover {
+        bool enabled = false;
+        bool missesInBuffer = false;
+    };
     TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFeatures& features,
               bool doubles, const Scene& scene, const CameraBasis& camera,
-              const RenderSettings& settings, int tile, bool cover, int slots = 1);
+              const RenderSettings& settings, int tile, Cover cover, int slots = 1);
     // Waits for what is still in flight: the device may not outlive its buffers.
     ~TracePass();
     TracePass(const TracePass&) = delete;
@@ -66,7 +73,6 @@ public:
 
     // Submits the first dispatch of the tile at (tx, ty) of w x h pixels in
     // `slot`, whose last tile must be finished; returns without waiting.
-    // The pixels of its workgroups outside the cover are written at once.
     void start(int slot, int tx, int ty, int w, int h, int block, uint turnBudget);
     // Waits for the tile of `slot` and dispatches it again until all its rays
     // are done; its pixels are then in pixels(slot), row-major with stride w.
@@ -80,6 +86,18 @@ public:
     // start() and finish() in slot 0.
     void traceTile(int tx, int ty, int w, int h, int block, uint& turnBudget,
                    GpuRenderStats& stats);
+
+    // The pixels of the slot's tile that its dispatches wrote, and those
+    // they left out, which are missedPixel()'s: tile-relative rectangles,
+    // one a workgroup.
+    const std::vector<TileRect>& tracedPixels(int slot = 0) const {
+        return slots_.at(size_t(slot)).traced;
+    }
+    const std::vector<TileRect>& missedPixels(int slot = 0) const {
+        return slots_.at(size_t(slot)).missed;
+    }
+    // The pixel of a primary ray that meets nothing, as the shader writes it.
+    const GpuPixel& missedPixel() const { return missed_; }
 
     const GpuPixel* pixels(int slot = 0) const {
         return static_cast<const GpuPixel*>(buffer(BINDING_PIXELS, slot).data());
@@ -111,10 +129,12 @@ private:
         vk::raii::CommandBuffer commands = nullptr;
         vk::raii::Fence fence = nullptr;
         vk::raii::QueryPool timestamps =
-            nullptr;            // before and after the dispatch, if the queue can
-        TileParams params{};    // of the dispatch submitted last
-        uint groups = 0;        // the workgroups of its dispatches (none: nothing to trace)
-        bool inFlight = false;  // submitted, not yet waited for
+            nullptr;                   // before and after the dispatch, if the queue can
+        TileParams params{};           // of the dispatch submitted last
+        uint groups = 0;               // the workgroups of its dispatches (none: nothing to trace)
+        std::vector<TileRect> traced;  // their pixels
+        std::vector<TileRect> missed;  // those of the workgroups left out
+        bool inFlight = false;         // submitted, not yet waited for
     };
 
     // Records and submits one dispatch of the slot's tile; `first`: its rays start afresh.
@@ -137,7 +157,8 @@ private:
     std::map<uint, BindingKind> kinds_;  // the variant's bindings
     uint firstSample_, endSample_;       // the samples each ray traces
     PrimaryCover cover_;                 // where primary rays may meet an object
-    GpuPixel background_{};              // the pixel of a ray that meets nothing
+    bool missesInBuffer_;                // the pixels outside it written into the buffer too
+    GpuPixel missed_{};                  // the pixel of a ray that meets nothing
     std::size_t groupsTraced_ = 0, groups_ = 0;
     Buffers buffers_;  // the scene's, shared by the slots
     struct Staged {
