@@ -307,8 +307,9 @@ TEST(GpuTracer, PixelsLeftToTheBackgroundAreThoseTheShaderWouldWrite) {
             EXPECT_EQ(a.id, b.id) << what;
             EXPECT_EQ(a.depth, b.depth) << what;
             EXPECT_EQ(a.normal, b.normal) << what;
-            if (settings.block == 1)  // the sky, and the corners the objects leave
+            if (settings.block == 1) {  // the sky, and the corners the objects leave
                 EXPECT_LT(coveredStats.groupsTraced, coveredStats.groups) << what;
+            }
             EXPECT_GT(coveredStats.groupsTraced, 0u) << what;
             EXPECT_EQ(wholeStats.groupsTraced, wholeStats.groups) << what;
             EXPECT_EQ(coveredStats.groups, wholeStats.groups) << what;

@@ -193,9 +193,10 @@ TEST(PrimaryCover, NoSampleThatMeetsAShapeIsLeftOut) {
                 for (const WorldPlane& p : shapes.planes)
                     meets =
                         meets || (glm::dot(p.normal, eye) + p.offset) * glm::dot(p.normal, d) < 0;
-                if (meets)
+                if (meets) {
                     ASSERT_TRUE(cover.mayHit(px, py, px + 1, py + 1))
                         << "trial " << trial << ", pixel " << px << "," << py;
+                }
                 leftOut += cover.mayHit(px, py, px + 1, py + 1) ? 0 : 1;
             }
     }
