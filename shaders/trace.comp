@@ -132,6 +132,21 @@ real taperOf(uint index) {
 #endif
 }
 
+// A walk through an object BVH enters the meshes it meets and walks their
+// BVHs in the same loops (scene_walk.glsl), where a mesh's test would hold a
+// walk of its own: on llvmpipe every loop runs its body once each time it is
+// reached, so that a nested walk costs in every object test of the leaves.
+// (The stress record counts each object's test, as the CPU reference's.)
+// The host packs the nodes to match (meshNodesWithObjects).
+#define VKRAY_MESH_INSTANCES (VKRAY_OBJECT_BVH && VKRAY_SHAPE_MESH && !VKRAY_STRESS_OUTPUT)
+
+// Where an object's hits start along a ray.
+#if VKRAY_PRECISION_NAIVE
+const real T_MIN = NAIVE_EPSILON;  // the textbook's fixed epsilon, on every ray
+#else
+const real T_MIN = 0.0;  // robust: secondary rays start off the surface (offsetOrigin)
+#endif
+
 // Only the shapes of this variant are compiled in.
 #include "shapes/span.glsl"
 #if VKRAY_SHAPE_SPHERE
@@ -165,19 +180,23 @@ struct Hit {
     uint surface;        // the object whose surface was hit (a CSG primitive, or the object)
     rvec3 genericNormal;  // outward, in the generic space of `surface`
     rvec3 geometricNormal;  // the same, but a mesh's triangle's own instead of the interpolated
+#if VKRAY_MESH_INSTANCES
+    // A mesh's triangle met by the walk (NO_TRIANGLE: none), whose normals
+    // the walk works out at its end, from the barycentric coordinates.
+    uint triangle;
+    rvec3 barycentric;
+#endif
 };
+const uint NO_TRIANGLE = 0xFFFFFFFFu;
 
 // The nearest hit of object `index`, of shape `kind` (KIND_*), in (0, tMax);
 // for a CSG object, the primitive whose surface it is. `geometric` differs
 // from n only on meshes. Where the kind is a constant (an unrolled walk),
-// the compiler leaves only that shape's code.
-bool intersectObject(uint index, uint kind, rvec3 origin, rvec3 direction, real tMax, out real t,
-                     out rvec3 n, out rvec3 geometric, out uint surface) {
-#if VKRAY_PRECISION_NAIVE
-    const real tMin = NAIVE_EPSILON;  // the textbook's fixed epsilon, on every ray
-#else
-    const real tMin = 0.0;  // robust: secondary rays start off the surface (offsetOrigin)
-#endif
+// the compiler leaves only that shape's code; where `meshes` is false (a
+// constant: a walk that enters meshes itself), it leaves the mesh's out.
+bool intersectObject(uint index, uint kind, bool meshes, rvec3 origin, rvec3 direction, real tMax,
+                     out real t, out rvec3 n, out rvec3 geometric, out uint surface) {
+    const real tMin = T_MIN;
     surface = index;
 #if VKRAY_CSG
     if (kind == KIND_BOOLEAN) {
@@ -191,7 +210,7 @@ bool intersectObject(uint index, uint kind, rvec3 origin, rvec3 direction, real 
     rvec3 o, d;
     toObjectSpace(index, origin, direction, o, d);
 #if VKRAY_SHAPE_MESH
-    if (kind == KIND_MESH)
+    if (meshes && kind == KIND_MESH)
         return intersectMesh(objectShape(index).y, o, d, tMin, tMax, t, n, geometric);
 #endif
     bool hit = false;
@@ -284,7 +303,8 @@ void recordObjectTests(rvec3 origin, rvec3 direction) {
         toObjectSpace(i, origin, direction, o, d);
         real t;
         uint surface;
-        if (!intersectObject(i, objectShape(i).x, origin, direction, INFINITY, t, n, geometric, surface))
+        if (!intersectObject(i, objectShape(i).x, true, origin, direction, INFINITY, t, n, geometric,
+                             surface))
             t = INFINITY;
         debugEntries[i] = GpuDebugEntry(vec4(o, t), vec4(d, 0.0));
     }

@@ -304,6 +304,15 @@ GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
         // featuresOf asks for the BVH only with bounded objects: the root exists.
         if (packed.objectNodes.empty()) throw Error("internal: an object BVH without nodes");
         packed.objectBvh = std::move(objects.bvh);
+        // One walk takes the objects' BVH and the meshes' (trace.comp's
+        // VKRAY_MESH_INSTANCES): their nodes in one array, the meshes' after.
+        if (meshNodesWithObjects(features)) {
+            const uint first = uint(packed.objectNodes.size());
+            for (GpuMesh& mesh : packed.meshes) mesh.range.x += first;
+            packed.objectNodes.insert(packed.objectNodes.end(), packed.meshNodes.begin(),
+                                      packed.meshNodes.end());
+            packed.meshNodes.clear();
+        }
     }
     return packed;
 }

@@ -28,6 +28,7 @@ struct GpuScene {
     std::optional<Bvh> objectBvh;  // the same nodes in double (a primary cover's boxes)
     // features.kinds[KIND_MESH]:
     std::vector<GpuMesh> meshes;  // indexed like Scene::meshes
+    // Their nodes, or none where they follow objectNodes (meshNodesWithObjects).
     std::vector<GpuBvhNode> meshNodes;
     std::vector<GpuTriangle> triangles;
     // features.kinds[KIND_BOOLEAN]: every tree in post order.

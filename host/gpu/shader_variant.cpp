@@ -187,7 +187,8 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
     }
     if (features.kinds[KIND_MESH]) {
         bindings.push_back({BINDING_MESHES, "meshes", Texels});
-        bindings.push_back({BINDING_MESH_NODES, "mesh BVH nodes", Texels});
+        if (!meshNodesWithObjects(features))
+            bindings.push_back({BINDING_MESH_NODES, "mesh BVH nodes", Texels});
         bindings.push_back({BINDING_TRIANGLES, "triangles", Texels});
     }
     if (features.kinds[KIND_BOOLEAN]) bindings.push_back({BINDING_CSG_NODES, "CSG nodes", Texels});
@@ -202,6 +203,10 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
     if (features.stressOutput)
         bindings.push_back({BINDING_STRESS_OUTPUT, "stress output", Storage});
     return bindings;
+}
+
+bool meshNodesWithObjects(const ShaderFeatures& features) {
+    return features.objectBvh && features.kinds[KIND_MESH] && !features.stressOutput;
 }
 
 std::vector<ShaderFeatures> allVariants(bool everyCombination) {

@@ -124,6 +124,12 @@ struct ShaderBinding {
 };
 std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features);
 
+// Whether the variant walks meshes in its object BVH's walk, entering each
+// mesh object met (an object BVH and meshes, no stress record; trace.comp's
+// VKRAY_MESH_INSTANCES): the meshes' BVH nodes then follow the objects' in
+// one array (BINDING_OBJECT_NODES), and BINDING_MESH_NODES is not bound.
+bool meshNodesWithObjects(const ShaderFeatures& features);
+
 // The variants `vkray shaders check` compiles, each with and without the
 // object BVH. Shapes without shading features: those of at most two kinds or
 // all but at most one, with the debug-pixel record for each kind alone and

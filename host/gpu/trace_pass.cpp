@@ -96,8 +96,9 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
     }
     if (features.kinds[KIND_MESH]) {
         needs.push_back(need(BINDING_MESHES, "meshes", packed.meshes, smallerMeshes));
-        needs.push_back(
-            need(BINDING_MESH_NODES, "mesh BVH nodes", packed.meshNodes, smallerMeshes));
+        if (!meshNodesWithObjects(features))
+            needs.push_back(
+                need(BINDING_MESH_NODES, "mesh BVH nodes", packed.meshNodes, smallerMeshes));
         needs.push_back(need(BINDING_TRIANGLES, "triangles", packed.triangles, smallerMeshes));
     }
     if (features.kinds[KIND_BOOLEAN])
@@ -281,7 +282,7 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
     }
     if (features.kinds[KIND_MESH]) {
         add(BINDING_MESHES, packed.meshes);
-        add(BINDING_MESH_NODES, packed.meshNodes);
+        if (!meshNodesWithObjects(features)) add(BINDING_MESH_NODES, packed.meshNodes);
         add(BINDING_TRIANGLES, packed.triangles);
     }
     if (features.kinds[KIND_BOOLEAN]) add(BINDING_CSG_NODES, packed.csgNodes);

@@ -3,11 +3,17 @@
 // "Watertight triangles"): edge functions in a ray-aligned frame, so two triangles sharing
 // an edge see it with exactly opposite signs and no ray slips between them.
 layout(set = 0, binding = BINDING_MESHES, rgba32ui) uniform readonly uimageBuffer meshTexels;
-layout(set = 0, binding = BINDING_MESH_NODES, rgba32ui) uniform readonly uimageBuffer meshNodeTexels;
 layout(set = 0, binding = BINDING_TRIANGLES, rgba32ui) uniform readonly uimageBuffer triangleTexels;
 
 GpuMesh meshOf(uint index) { return GpuMesh(imageLoad(meshTexels, int(index))); }
+#if VKRAY_MESH_INSTANCES
+// The meshes' nodes follow the objects' (host: meshNodesWithObjects), for the
+// one walk through both.
+GpuBvhNode meshNode(uint index) { return objectNode(index); }
+#else
+layout(set = 0, binding = BINDING_MESH_NODES, rgba32ui) uniform readonly uimageBuffer meshNodeTexels;
 GpuBvhNode meshNode(uint index) { return BVH_NODE(meshNodeTexels, index); }
+#endif
 
 // Corner k (0..2) of triangle `index`: its position, or (normal) its normal.
 vec3 triangleCorner(uint index, uint k) {
