@@ -93,11 +93,13 @@ TEST(GpuShading, ObjectBvhFeelersPassEachMeshsTransparencyOnce) {
     for (int i = 0; i < 12; ++i)
         spheres +=
             "push translate " + std::to_string(-20 - 3 * i) + " 5 5 scale 0.5 0.5 0.5 sphere pop\n";
-    const std::string octahedra = "transparency 0.5 push translate 0.2 0.1 5 octahedron pop\n"
-                                  "transparency 0.25 push translate 0.1 0.2 7.5 octahedron pop\n";
+    const std::string octahedra =
+        "transparency 0.5 push translate 0.2 0.1 5 octahedron pop\n"
+        "transparency 0.25 push translate 0.1 0.2 7.5 octahedron pop\n";
     expectColor(floorOrigin(spheres + octahedra), glm::dvec3(0.2 + 0.5 * 0.5 * 0.25));
     // An opaque one stops it.
-    expectColor(floorOrigin(spheres + "push translate 0.2 0.1 5 octahedron pop\n"), glm::dvec3(0.2));
+    expectColor(floorOrigin(spheres + "push translate 0.2 0.1 5 octahedron pop\n"),
+                glm::dvec3(0.2));
 }
 
 // A mirror square z = 0 (no colour of its own) under a wall square z = 10
