@@ -142,15 +142,19 @@ Renders renderInMode(const Scene& scene, const RenderSettings& settings, Precisi
     return {tracer.render(scene, camera, settings), reference::render(scene, camera, settings)};
 }
 
-void expectDifftestSceneAgrees(const std::string& name, const RenderSettings& settings,
-                               Precision precision) {
-    SCOPED_TRACE(name);
-    const Scene scene = loadScene(test::kDataDir + "/difftest/" + name, {}, nullptr);
+void expectSceneAgrees(const Scene& scene, const RenderSettings& settings, Precision precision) {
     const Renders r = renderInMode(scene, settings, precision);
     CompareResult result = compareImages(colorImage(r.gpu), colorImage(r.cpu), {0.02, 0.1});
     compareIds(idImage(r.gpu), idImage(r.cpu), result);
     EXPECT_EQ(result.pixelsOverThreshold, 0u) << "largest difference " << result.maxAbsError;
     EXPECT_EQ(result.idMismatches.value_or(1), 0u);
+}
+
+void expectDifftestSceneAgrees(const std::string& name, const RenderSettings& settings,
+                               Precision precision) {
+    SCOPED_TRACE(name);
+    expectSceneAgrees(loadScene(test::kDataDir + "/difftest/" + name, {}, nullptr), settings,
+                      precision);
 }
 
 TEST(AgreementRegressions, AReflectionPassingACornerMissesItAsTheReferencesDoes) {
@@ -200,22 +204,9 @@ TEST(AgreementRegressions, ATexturedPlaneDiffersOnlyOnItsHorizonsRow) {
     }
 }
 
-// A teapot squashed by 1.8e-6 between two rotations, seen from 9.6e4: its
-// generic eye is 4e10 away. The fp64 GPU refused it at the loop limit; it now
-// draws it as the reference does.
-TEST(AgreementRegressions, ATeapotSquashedBetweenRotationsFarAwayIsDrawn) {
-    expectDifftestSceneAgrees("squashed_teapot_far.sdl", {32, 24, 1, 2, 0}, Precision::Fp64);
-}
-
-// The same teapot's mesh walks, in both modes: two samples a pixel, each a
-// primary ray and a shadow feeler, within 1000 counted loop turns a ray, so
-// each tile in one dispatch. Every walk had met all of the BVH's boxes and
-// tested all 16256 triangles (robust: 28 466 counted turns a walk). Robust's image is not compared:
-// float rounds a generic eye 4e10 away by ~2e3 generic units, far outside
-// its envelope (docs/numerics.md).
-TEST(AgreementRegressions, ATeapotSquashedBetweenRotationsFarAwayWalksOnlyTheBoxesItMeets) {
-    const Scene scene =
-        loadScene(test::kDataDir + "/difftest/squashed_teapot_far.sdl", {}, nullptr);
+// Two samples a pixel, each a primary ray and a shadow feeler, within 1000
+// counted loop turns a ray in both modes: each tile in one dispatch.
+void expectWalksWithin1000Turns(const Scene& scene) {
     const RenderSettings settings{32, 24, 1, 2, 0};
     const CameraBasis camera = makeCameraBasis(*scene.camera, settings.width, settings.height);
     for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
@@ -228,6 +219,39 @@ TEST(AgreementRegressions, ATeapotSquashedBetweenRotationsFarAwayWalksOnlyTheBox
         EXPECT_EQ(stats.dispatches, stats.tiles);
         EXPECT_EQ(stats.tilesRedone, 0u);
     }
+}
+
+// A teapot squashed by 1.8e-6 between two rotations, seen from 9.6e4: its
+// generic eye is 4e10 away. The fp64 GPU refused it at the loop limit; it now
+// draws it as the reference does.
+TEST(AgreementRegressions, ATeapotSquashedBetweenRotationsFarAwayIsDrawn) {
+    expectDifftestSceneAgrees("squashed_teapot_far.sdl", {32, 24, 1, 2, 0}, Precision::Fp64);
+}
+
+// The same teapot's mesh walks, in both modes. Every walk had met all of
+// the BVH's boxes and tested all 16256 triangles (robust: 28 466 counted
+// turns a walk). Robust's image is not compared: float rounds a generic eye
+// 4e10 away by ~2e3 generic units, far outside its envelope
+// (docs/numerics.md).
+TEST(AgreementRegressions, ATeapotSquashedBetweenRotationsFarAwayWalksOnlyTheBoxesItMeets) {
+    const Scene scene =
+        loadScene(test::kDataDir + "/difftest/squashed_teapot_far.sdl", {}, nullptr);
+    expectWalksWithin1000Turns(scene);
+}
+
+// The same teapot among nine spheres out of view: an object BVH, whose walk
+// enters the mesh itself and walks its BVH from the same start.
+TEST(AgreementRegressions, ATeapotSquashedFarAwayInAnObjectBvhIsDrawnAndWalkedAsAlone) {
+    const std::string path = test::kDataDir + "/difftest/squashed_teapot_far.sdl";
+    std::ifstream in(path);
+    std::string sdl((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (int i = 0; i < 9; ++i)
+        sdl += "push translate 500 " + std::to_string(3 * i) + " 0 sphere pop\n";
+    Scene scene = parseSdl(sdl, path, {}, nullptr);
+    loadSceneGeometry(scene, false, nullptr);
+    ASSERT_TRUE(gpu::featuresOf(scene, {32, 24, 1, 2, 0}, false).objectBvh);
+    expectSceneAgrees(scene, {32, 24, 1, 2, 0}, Precision::Fp64);
+    expectWalksWithin1000Turns(scene);
 }
 
 }  // namespace
