@@ -43,11 +43,12 @@ layout(std430, set = 0, binding = BINDING_TILE) readonly buffer TileBlock { Tile
 // inside an if or a loop is a scalar loop over the 8 lanes (docs/lavapipe.md).
 layout(set = 0, binding = BINDING_PIXELS, rgba32ui) uniform uimageBuffer pixelTexels;
 layout(set = 0, binding = BINDING_RAY_GROUPS, r32ui) uniform readonly uimageBuffer rayGroupTexels;
-// A ray pauses only where an invocation may walk the scene more than once: a
-// variant of one walk a pixel (a primary ray, no feelers, no secondary rays,
-// one sample) finishes every ray in one dispatch and keeps no progress.
-#define VKRAY_ONE_WALK (!VKRAY_SHADOWS && !VKRAY_REFLECTION && !VKRAY_REFRACTION && !VKRAY_ANTIALIAS)
-#if !VKRAY_ONE_WALK
+// A ray pauses only between two rays of a pixel (traceSamples), never between
+// a hit and its feelers: a variant of one ray a pixel (no secondary rays, one
+// sample; shadow feelers or not) finishes every pixel in one dispatch and
+// keeps no progress.
+#define VKRAY_ONE_PASS (!VKRAY_REFLECTION && !VKRAY_REFRACTION && !VKRAY_ANTIALIAS)
+#if !VKRAY_ONE_PASS
 layout(set = 0, binding = BINDING_PROGRESS, rgba32ui) uniform uimageBuffer progressTexels;
 #endif
 layout(std430, set = 0, binding = BINDING_STATUS) buffer StatusBlock { GpuDispatchStatus status; };
@@ -87,7 +88,7 @@ void storePixel(uint index, GpuPixel pixel) {
 #endif
 }
 
-#if !VKRAY_ONE_WALK
+#if !VKRAY_ONE_PASS
 GpuRayProgress loadProgress(uint index) {
     int first = int(index * RAY_PROGRESS_TEXELS);
     return GpuRayProgress(texelAsVec4(imageLoad(progressTexels, first)),
@@ -387,9 +388,9 @@ void main() {
     uint firstSample = tileParams.samples.x, endSample = tileParams.samples.y;
     bool aovFound;
     GpuPixel aov;
-#if VKRAY_ONE_WALK
-    // The pixel's one ray, traced whole in this dispatch: sample 0, whose
-    // hit gives the AOVs, and the colour.
+#if VKRAY_ONE_PASS
+    // The pixel's one ray (and its feelers), traced whole in this dispatch:
+    // sample 0, whose hit gives the AOVs, and the colour.
     GpuRayProgress ray = GpuRayProgress(vec4(0.0, 0.0, 0.0, uintBitsToFloat(firstSample)), vec4(0.0));
     traceSamples(ray, endSample, firstPixel, tileParams.work.x, aovFound, aov);
     GpuPixel result = aov;

@@ -168,7 +168,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     // Per pixel at most (a ray per pixel): its pixel, progress and pending rays.
     const bool rayStack = features.has(Shading::Reflection) || features.has(Shading::Refraction);
     const size_t pixelBytes =
-        sizeof(GpuPixel) + (tracesOneWalk(features) ? 0 : sizeof(GpuRayProgress)) +
+        sizeof(GpuPixel) + (tracesInOnePass(features) ? 0 : sizeof(GpuRayProgress)) +
         (features.stressOutput ? sizeof(GpuStressSample) : 0) +
         (rayStack ? size_t(pendingRayEntries(scene)) *
                         (features.doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask))

@@ -60,9 +60,8 @@ bool canShadow(const Scene& scene) {
 
 }  // namespace
 
-bool tracesOneWalk(const ShaderFeatures& f) {
-    return !f.has(Shading::Shadows) && !f.has(Shading::Reflection) && !f.has(Shading::Refraction) &&
-           !f.has(Shading::Antialias);
+bool tracesInOnePass(const ShaderFeatures& f) {
+    return !f.has(Shading::Reflection) && !f.has(Shading::Refraction) && !f.has(Shading::Antialias);
 }
 
 ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bool allFeatures) {
@@ -176,7 +175,7 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
         bindings.push_back({BINDING_LIGHTS, "lights", Texels});
     bindings.push_back({BINDING_PIXELS, "pixels", Texels});
     bindings.push_back({BINDING_RAY_GROUPS, "ray groups", UintTexels});
-    if (!tracesOneWalk(features)) bindings.push_back({BINDING_PROGRESS, "ray progress", Texels});
+    if (!tracesInOnePass(features)) bindings.push_back({BINDING_PROGRESS, "ray progress", Texels});
     bindings.push_back({BINDING_STATUS, "dispatch status", Storage});
     if (features.has(Shading::Reflection) || features.has(Shading::Refraction))
         bindings.push_back({BINDING_RAY_STACK, "pending rays", Texels});
@@ -243,8 +242,8 @@ std::vector<ShaderFeatures> allVariants(bool everyCombination) {
         for (unsigned kind = 0; kind < kinds; ++kind) add(1u << kind, shading, false);
     }
     add(allKinds, allShading, true);
-    // `vkray render` without --aov: no depth and normal, with one walk a
-    // pixel and with everything.
+    // `vkray render` without --aov: no depth and normal, in one pass and
+    // with everything.
     for (unsigned shading : {0u, allShading}) {
         add(allKinds, shading, false);
         for (std::size_t i = variants.size() - 2; i < variants.size(); ++i)

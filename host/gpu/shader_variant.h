@@ -80,10 +80,11 @@ struct ShaderFeatures {
     bool operator==(const ShaderFeatures&) const = default;
 };
 
-// Whether each invocation walks the scene once: one primary ray a pixel, no
-// feelers, no secondary rays. Its rays never pause, so the variant keeps no
-// progress between dispatches (trace.comp's VKRAY_ONE_WALK, the same test).
-bool tracesOneWalk(const ShaderFeatures& features);
+// Whether each invocation finishes its pixel in one dispatch: one ray a pixel
+// (its feelers included), no secondary rays, one sample. Its rays never
+// pause, so the variant keeps no progress between dispatches (trace.comp's
+// VKRAY_ONE_PASS, the same test).
+bool tracesInOnePass(const ShaderFeatures& features);
 
 // The features `scene` rendered with `settings` needs (every shape kind and
 // shading feature when allFeatures; the object BVH is a property of the

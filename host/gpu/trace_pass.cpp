@@ -114,7 +114,7 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
 GpuPixel missOf(const glm::dvec3& background, bool aovs, uint samples, bool averaged) {
     // As the shader makes it: each sample's colour is the background's float,
     // their sum in sample order divided by their count (in a variant of one
-    // walk a pixel, the one sample's colour as it is).
+    // pass, the one sample's colour as it is).
     const float br = float(background.x), bg = float(background.y), bb = float(background.z);
     float r = 0, g = 0, bl = 0;
     for (uint k = 0; k < samples; ++k) r += br, g += bg, bl += bb;
@@ -231,7 +231,7 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
                               camera, settings);
     packed.objectBvh.reset();
     missed_ = missOf(scene.background, features.aovs, endSample_ - firstSample_,
-                     !tracesOneWalk(features));
+                     !tracesInOnePass(features));
     const size_t debugEntries = 4 + scene.objects.size() + scene.lights.size();
     const size_t raysPerSide = size_t((tile + settings.block - 1) / settings.block);
     const size_t tileRays = raysPerSide * raysPerSide;

@@ -232,11 +232,13 @@ TEST(GpuTracer, DeviceTimeOfTheDispatchesLiesWithinTheRender) {
 
 // A render without AOVs (`vkray render` without --aov) writes the colour
 // and the object id of a render with them, byte for byte, and leaves depth
-// and normal as Frame() made them: for one walk a pixel, for blocks, and for
-// rays that pause between dispatches (feelers, a mirror, several samples).
+// and normal as Frame() made them: for one pass a pixel (with feelers or
+// without), for blocks, and for rays that pause between dispatches (a
+// mirror, several samples).
 TEST(GpuTracer, WithoutAovsTheColourAndIdsAreThoseOfARenderWithThem) {
     const char* const scenes[] = {
         "push translate 0.3 0 0 sphere pop cube",
+        "light 4 4 4 1 1 1 push translate 0.3 0 0 sphere pop cube",
         "light 4 4 4 1 1 1 reflectivity 0.7 push translate 0.3 0 0 sphere pop cube",
     };
     Camera camera;

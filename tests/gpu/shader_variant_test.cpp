@@ -229,23 +229,23 @@ TEST(ShaderVariant, DepthAndNormalOnlyWhenAsked) {
     EXPECT_FALSE(featuresOf(scene, settings, true).aovs);
 }
 
-TEST(ShaderVariant, OnlyVariantsThatWalkMoreThanOnceKeepRayProgress) {
+TEST(ShaderVariant, OnlyVariantsWhoseRaysMayPauseKeepRayProgress) {
     const auto keepsProgress = [](const ShaderFeatures& f) {
         const std::vector<ShaderBinding> bindings = bindingsFor(f);
         return std::any_of(bindings.begin(), bindings.end(),
                            [](const ShaderBinding& b) { return b.binding == BINDING_PROGRESS; });
     };
-    // One primary ray a pixel and nothing after it: every ray is done in
-    // its first dispatch.
-    for (const char* oneWalk : {"sphere cube", "light 1 2 3 1 1 1 plane", "texture 1 sphere"}) {
-        EXPECT_TRUE(tracesOneWalk(featuresOfText(oneWalk))) << oneWalk;
-        EXPECT_FALSE(keepsProgress(featuresOfText(oneWalk))) << oneWalk;
+    // One ray a pixel, with its feelers, and nothing after it: every pixel is
+    // done in its first dispatch (a ray pauses only between two rays).
+    for (const char* onePass : {"sphere cube", "light 1 2 3 1 1 1 plane", "texture 1 sphere",
+                                "light 1 2 3 1 1 1 sphere cube"}) {
+        EXPECT_TRUE(tracesInOnePass(featuresOfText(onePass))) << onePass;
+        EXPECT_FALSE(keepsProgress(featuresOfText(onePass))) << onePass;
     }
-    // Feelers, secondary rays or several samples: a ray may pause.
-    EXPECT_FALSE(tracesOneWalk(featuresOfText("sphere", 2)));
-    for (const char* more :
-         {"light 1 2 3 1 1 1 sphere cube", "reflectivity 0.6 sphere", "transparency 0.9 sphere"}) {
-        EXPECT_FALSE(tracesOneWalk(featuresOfText(more))) << more;
+    // Secondary rays or several samples: a ray may pause.
+    EXPECT_FALSE(tracesInOnePass(featuresOfText("sphere", 2)));
+    for (const char* more : {"reflectivity 0.6 sphere", "transparency 0.9 sphere"}) {
+        EXPECT_FALSE(tracesInOnePass(featuresOfText(more))) << more;
         EXPECT_TRUE(keepsProgress(featuresOfText(more))) << more;
     }
 }
