@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -252,6 +253,29 @@ TEST(AgreementRegressions, ATeapotSquashedFarAwayInAnObjectBvhIsDrawnAndWalkedAs
     ASSERT_TRUE(gpu::featuresOf(scene, {32, 24, 1, 2, 0}, false).objectBvh);
     expectSceneAgrees(scene, {32, 24, 1, 2, 0}, Precision::Fp64);
     expectWalksWithin1000Turns(scene);
+}
+
+// A cube and an extruded square that coincide with it, among spheres (an
+// object BVH, whose walk enters the mesh): their faces tie, and the lower
+// object index wins on the GPU as in the reference, in either order.
+TEST(AgreementRegressions, AMeshCoincidingWithACubeTiesAsInTheReference) {
+    const std::filesystem::path dir =
+        std::filesystem::path(::testing::TempDir()) / "vkray_mesh_tie";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "square.dat") << "4\n-1 -1\n1 -1\n1 1\n-1 1\n";
+    const std::string prism = "push translate 0 0 -1 scale 1 1 2 extrude square.dat pop\n";
+    std::string spheres;
+    for (int i = 0; i < 9; ++i)
+        spheres +=
+            "push translate " + std::to_string(4 + 2 * i) + " 3 0 scale 0.5 0.5 0.5 sphere pop\n";
+    const std::string camera = "camera eye 3 2.5 4 look 0 0 0 up 0 1 0 fov 50\n";
+    for (const std::string& objects : {"cube\n" + prism, prism + "cube\n"}) {
+        SCOPED_TRACE(objects);
+        Scene scene = parseSdl(camera + objects + spheres, (dir / "tie.sdl").string(), {}, nullptr);
+        loadSceneGeometry(scene, false, nullptr);
+        ASSERT_TRUE(gpu::featuresOf(scene, {40, 30}, false).objectBvh);
+        expectSceneAgrees(scene, {40, 30}, Precision::Robust);
+    }
 }
 
 }  // namespace
