@@ -82,13 +82,6 @@ struct MeshVisit {
 const real MESH_ENTRY_ENTER = -1.0;
 const real MESH_END_ENTER = -1.0 / 0.0;
 
-// The walk's far bound in the mesh's local t, widened by its rounding as in
-// intersectMesh.
-real meshLocalFar(MeshVisit visit, real far) {
-    real local = far - visit.shift;
-    return local + abs(local) * MESH_LOCAL_SLACK;
-}
-
 // Sets `visit` up for mesh object `object` and gives its root's code and
 // local entry t: false where the ray misses the root's box within (T_MIN, far).
 bool enterMesh(uint object, rvec3 origin, rvec3 direction, real far, out MeshVisit visit,
@@ -123,8 +116,8 @@ void testTriangle(uint index, bool feeler, inout MeshVisit visit, inout Hit hit,
     real local, t;
     rvec3 barycentric;
     if (!intersectTriangle(visit.sheared, triangleCorner(index, 0u), triangleCorner(index, 1u),
-                           triangleCorner(index, 2u), visit.localMin, meshLocalFar(visit, far),
-                           local, barycentric))
+                           triangleCorner(index, 2u), visit.localMin,
+                           meshLocalBound(far, visit.shift), local, barycentric))
         return;
     t = visit.shift + local;
     if (!(t > T_MIN && t < far)) return;
@@ -233,7 +226,7 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
             ++loopTurns;
             real far = reach(hit.t, feeler);
 #if VKRAY_MESH_INSTANCES
-            real localFar = meshLocalFar(visit, far);
+            real localFar = meshLocalBound(far, visit.shift);
 #endif
             if (!walking) {
                 // The nearest kept node the ray still reaches before its hit.
@@ -315,14 +308,8 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
     }
 #if VKRAY_MESH_INSTANCES
     // The normals of the mesh's hit triangle, as intersectMesh gives them.
-    if (hit.triangle != NO_TRIANGLE) {
-        uint i = hit.triangle;
-        rvec3 b = hit.barycentric;
-        hit.genericNormal = b.x * triangleNormal(i, 0u) + b.y * triangleNormal(i, 1u) +
-                            b.z * triangleNormal(i, 2u);
-        vec3 p0 = triangleCorner(i, 0u);
-        hit.geometricNormal = cross(triangleCorner(i, 1u) - p0, triangleCorner(i, 2u) - p0);
-    }
+    if (hit.triangle != NO_TRIANGLE)
+        triangleNormals(hit.triangle, hit.barycentric, hit.genericNormal, hit.geometricNormal);
 #endif
 #elif VKRAY_OBJECTS > 0
     // A few objects, as many as the host counted, each of the shape the host

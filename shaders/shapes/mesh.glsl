@@ -93,6 +93,22 @@ real meshWalkShift(GpuBvhNode root, rvec3 d, real enter) {
 #endif
 }
 
+// The far bound tMax of a walk measured from `shift` along the ray, widened
+// by its rounding, so that no box or hit short of tMax is lost.
+real meshLocalBound(real tMax, real shift) {
+    real local = tMax - shift;
+    return local + abs(local) * MESH_LOCAL_SLACK;
+}
+
+// Triangle `index`'s normal interpolated at `barycentric` and its own
+// (geometric) one, unnormalised.
+void triangleNormals(uint index, rvec3 barycentric, out rvec3 normal, out rvec3 geometric) {
+    normal = barycentric.x * triangleNormal(index, 0u) + barycentric.y * triangleNormal(index, 1u) +
+             barycentric.z * triangleNormal(index, 2u);
+    vec3 p0 = triangleCorner(index, 0u);
+    geometric = cross(triangleCorner(index, 1u) - p0, triangleCorner(index, 2u) - p0);
+}
+
 // The nearest triangle of mesh `index` in (tMin, tMax), with the interpolated
 // normal and the triangle's own (geometric) one, unnormalised.
 bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real t, out rvec3 normal,
@@ -111,8 +127,7 @@ bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real 
     rvec3 start = fma(rvec3(shift), d, o);
     ShearedRay sheared = shearRay(start, d);
     real localMin = tMin - shift;
-    real local = tMax - shift;
-    local += abs(local) * MESH_LOCAL_SLACK;
+    real local = meshLocalBound(tMax, shift);
     bool found = false;
     uint nearest = 0u;  // the triangle of the closest hit so far
     rvec3 nearestBarycentric = rvec3(0.0);
@@ -177,13 +192,7 @@ bool intersectMesh(uint index, rvec3 o, rvec3 d, real tMin, real tMax, out real 
         if (leafCount == 0u) break;
     }
     // The normals of the nearest triangle only (read once, not at every closer hit).
-    if (found) {
-        rvec3 bary = nearestBarycentric;
-        normal = bary.x * triangleNormal(nearest, 0u) + bary.y * triangleNormal(nearest, 1u) +
-                 bary.z * triangleNormal(nearest, 2u);
-        vec3 p0 = triangleCorner(nearest, 0u);
-        geometricNormal = cross(triangleCorner(nearest, 1u) - p0, triangleCorner(nearest, 2u) - p0);
-    }
+    if (found) triangleNormals(nearest, nearestBarycentric, normal, geometricNormal);
     return found;
 }
 
