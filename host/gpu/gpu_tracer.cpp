@@ -11,8 +11,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <deque>
 #include <limits>
 #include <map>
+#include <numeric>
+#include <utility>
 
 namespace vkray::gpu {
 
@@ -177,8 +180,9 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
         fitTileSide(std::max(block, side / block * block), block, pixelBytes, pipeline.workgroupX,
                     pipeline.workgroupY, deviceLimits(context_.device()));
     // One process tracing every tile keeps two in flight: the device traces
-    // the next while the host reads this one back. A schedule of another
-    // process (MPI) hands out one tile at a time.
+    // the next while the host reads this one back (a third slot measured no
+    // faster). A schedule of another process (MPI) hands out one tile at a
+    // time.
     const bool overlap = schedule == nullptr;
     // Rays that provably meet nothing are left out; naive keeps them, and
     // the stress and debug records want every ray.
@@ -188,7 +192,17 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
                    tile, {cover, bool(tileListener_)}, overlap ? 2 : 1);
     st.setupSeconds = setup.seconds() - st.shader.seconds;
 
-    Frame frame(settings.width, settings.height);
+    // Tracing every tile, the frame starts as the background, so that a
+    // tile's pixels whose rays meet nothing (most of many images) are not
+    // copied over one by one; a schedule's frame keeps Frame()'s pixels
+    // outside the tiles it hands this process.
+    const GpuPixel& miss = pass.missedPixel();
+    const bool missedInFrame = overlap;
+    Frame frame =
+        missedInFrame
+            ? Frame(settings.width, settings.height, {miss.color.x, miss.color.y, miss.color.z},
+                    settings.firstSample == 0 && features.aovs ? miss.normal.w : 0)
+            : Frame(settings.width, settings.height);
     if (stressSamples) stressSamples->assign(frame.pixelCount(), StressSample{});
     const Stopwatch rendering;
     const double renderCpuStart = processCpuSeconds();
@@ -216,9 +230,10 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
             frame.depth[i] = p.normal.w;
             frame.normal[i] = {p.normal.x, p.normal.y, p.normal.z};
         };
-        for (const TileRect& r : pass.missedPixels(slot))
-            for (int y = r.y; y < r.y + r.height; ++y)
-                for (int x = r.x; x < r.x + r.width; ++x) take(pass.missedPixel(), x, y);
+        if (!missedInFrame)
+            for (const TileRect& r : pass.missedPixels(slot))
+                for (int y = r.y; y < r.y + r.height; ++y)
+                    for (int x = r.x; x < r.x + r.width; ++x) take(pass.missedPixel(), x, y);
         for (const TileRect& r : pass.tracedPixels(slot)) {
             for (int y = r.y; y < r.y + r.height; ++y) {
                 for (int x = r.x; x < r.x + r.width; ++x) {
@@ -238,15 +253,34 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     if (overlap) {
         const std::vector<TileRect> pieces =
             tilesOf(settings.width, settings.height, tile, options_.serpentineTiles);
-        const auto start = [&](size_t i) {
-            const TileRect& p = pieces[i];
-            pass.start(int(i % 2), p.x, p.y, p.width, p.height, block, turnBudget);
+        // A tile whose rays all meet nothing dispatches nothing: it is read
+        // back at once and holds no slot, so that runs of such tiles leave
+        // the device no less to do.
+        std::deque<std::pair<size_t, int>> inFlight;  // (piece, slot), in order of submission
+        std::vector<int> freeSlots(size_t(pass.slots()));
+        std::iota(freeSlots.begin(), freeSlots.end(), 0);
+        size_t next = 0;
+        const auto fill = [&] {
+            for (; next < pieces.size() && !freeSlots.empty(); ++next) {
+                const TileRect& p = pieces[next];
+                const int slot = freeSlots.back();
+                pass.start(slot, p.x, p.y, p.width, p.height, block, turnBudget);
+                if (pass.inFlight(slot)) {
+                    freeSlots.pop_back();
+                    inFlight.emplace_back(next, slot);
+                } else {
+                    readBack(slot, p);
+                }
+            }
         };
-        for (size_t i = 0; i < std::min<size_t>(2, pieces.size()); ++i) start(i);
-        for (size_t i = 0; i < pieces.size(); ++i) {
-            pass.finish(int(i % 2), turnBudget, st);
-            readBack(int(i % 2), pieces[i]);
-            if (i + 2 < pieces.size()) start(i + 2);  // into the slot just read back
+        fill();
+        while (!inFlight.empty()) {
+            const auto [piece, slot] = inFlight.front();
+            inFlight.pop_front();
+            pass.finish(slot, turnBudget, st);
+            readBack(slot, pieces[piece]);
+            freeSlots.push_back(slot);
+            fill();
         }
     } else {
         schedule->plan(settings.width, settings.height, tile);

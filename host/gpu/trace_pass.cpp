@@ -2,6 +2,7 @@
 
 #include "gpu/device_limits.h"
 #include "gpu/gpu_scene.h"
+#include "gpu/workgroup_order.h"
 #include "util/error.h"
 
 #include <algorithm>
@@ -381,6 +382,7 @@ void TracePass::start(int slot, int tx, int ty, int w, int h, int block, uint tu
         }
     }
     groupsTraced_ += s.groups;
+    spreadForContiguousSplits({groupList, s.groups});
     pixels.flush();
     groups.flush();
     if (s.groups > 0) submit(s, true);

@@ -44,9 +44,9 @@ constexpr uint kCanaryTurns = 4;
 // Everything one render needs on the device: the scene's buffers, and for
 // each of `slots` tiles in flight its own buffers (pixels, progress, status,
 // pending rays, the debug and stress records), descriptor set, command
-// buffer and fence. With two slots the next tile is submitted before the
-// host waits for this one, so the device traces it while the host reads this
-// one back; traceTile() traces one tile in slot 0 and waits for it.
+// buffer and fence. With several slots the next tiles are submitted before
+// the host waits for this one, so the device traces them while the host
+// reads this one back; traceTile() traces one tile in slot 0 and waits for it.
 class TracePass {
 public:
     // doubles: the fp64 variant, which also reads the camera and M^-1 in double.
@@ -83,6 +83,9 @@ public:
     // driver's limit, it is an Error. With timestamps, each dispatch's time
     // on the device is added to stats.deviceSeconds.
     void finish(int slot, uint& turnBudget, GpuRenderStats& stats);
+    // Whether the slot's tile has a dispatch submitted and not yet finished
+    // (none when all its rays meet nothing).
+    bool inFlight(int slot) const { return slots_.at(size_t(slot)).inFlight; }
     // start() and finish() in slot 0.
     void traceTile(int tx, int ty, int w, int h, int block, uint& turnBudget,
                    GpuRenderStats& stats);

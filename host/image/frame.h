@@ -20,11 +20,13 @@ struct Frame {
     std::vector<std::int32_t> id;   // object index in scene order; -1 on a miss
 
     Frame() = default;
-    Frame(int w, int h)
+    // Every pixel of colour `fill` and depth `depth`, normal 0, id -1: a
+    // renderer that knows which pixels its rays miss writes only the others.
+    Frame(int w, int h, glm::vec3 fill = {}, float depth = 0)
         : width(w),
           height(h),
-          color(size_t(w) * h),
-          depth(size_t(w) * h),
+          color(size_t(w) * h, fill),
+          depth(size_t(w) * h, depth),
           normal(size_t(w) * h),
           id(size_t(w) * h, -1) {}
 
