@@ -2,9 +2,8 @@
 // lp_cs_tpool) splits a dispatch's workgroups into one contiguous run for
 // each of its threads, decided before any runs: with the tile's groups in
 // rows, the thread given the half of a tile that shows most of a scene works
-// while the other waits (the GPU path kept 1.6 of 2 cores busy). Listed in
-// bit-reversed order, every contiguous run of the list is an even sample of
-// the tile, whatever the number of threads.
+// while the other waits. Listed in bit-reversed order, every contiguous run
+// of the list is an even sample of the tile, whatever the number of threads.
 #pragma once
 
 #include <cstdint>
