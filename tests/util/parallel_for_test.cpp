@@ -5,6 +5,7 @@
 #include <atomic>
 #include <stdexcept>
 #include <stop_token>
+#include <thread>
 #include <vector>
 
 namespace vkray {
@@ -43,8 +44,12 @@ TEST(ParallelFor, AThrowingBodyPropagatesToTheCallerAfterAllWorkersStop) {
             EXPECT_STREQ(e.what(), "index 50 failed");
             // Every worker has stopped: none is inside the body any more...
             EXPECT_EQ(running, 0);
-            // ... and the hand-out stopped well before the end of the range.
-            EXPECT_LT(started, 10000);
+            // ... and on one thread the hand-out stopped right after the
+            // throw. (On four, how many indices the others ran before the
+            // failure was seen depends on the scheduler: not asserted.)
+            if (threads == 1) {
+                EXPECT_EQ(started, 51);
+            }
         }
     }
 }
@@ -77,12 +82,17 @@ TEST(ParallelFor, AStopRequestEndsTheHandOut) {
             [&](std::size_t i) {
                 ++runs;
                 if (i == 10) stop.request_stop();
+                // An index after 10 was handed out after 10 was: its body
+                // waits for the stop, so that no worker can run ahead of the
+                // one that requests it, however the threads are scheduled.
+                while (i > 10 && !stop.stop_requested()) std::this_thread::yield();
             },
             threads, stop.get_token());
         EXPECT_FALSE(finished);
-        // Each worker finishes the index it holds and takes no other.
+        // Each worker finishes the index it holds and takes no other: 0 to
+        // 10, and at most one more for each of the other workers.
         EXPECT_GE(runs, 11);
-        EXPECT_LE(runs, 10 + 1 + threads);
+        EXPECT_LE(runs, 10 + threads);
     }
     std::stop_source early;
     early.request_stop();
