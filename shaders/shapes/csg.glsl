@@ -8,62 +8,76 @@ layout(set = 0, binding = BINDING_CSG_NODES, rgba32ui) uniform readonly uimageBu
 // GpuCsgNode[index].node.
 uvec4 csgNode(uint index) { return imageLoad(csgNodeTexels, int(index)); }
 
-// One end of a span: where the ray crosses a primitive's surface.
-struct SpanEnd {
-    real t;
-    rvec3 normal;     // generic outward normal of `primitive`, negated when flipped
-    uint primitive;  // object index
-};
-
-struct SpanList {
-    uint count;
-    SpanEnd ends[2 * CSG_MAX_SPANS];  // in, out, in, out, ... ascending
-};
+// The span lists live in a pool of slots, each end's fields in an array of
+// its own: lavapipe keeps an array indexed at run time in memory and writes
+// each word of it in a loop over the lanes, so a list is written once, where
+// it is made, never copied (a whole list is 81 words). The evaluation's
+// stack holds slot numbers; one slot more than the stack's depth takes a
+// combination's result.
+const uint CSG_SLOTS = CSG_MAX_STACK + 1u;
+const uint CSG_SLOT_ENDS = 2u * CSG_MAX_SPANS;  // in, out, in, out, ... ascending
+real csgEndT[CSG_SLOTS * CSG_SLOT_ENDS];
+rvec3 csgEndNormal[CSG_SLOTS * CSG_SLOT_ENDS];  // generic outward normal of the primitive, negated when flipped
+uint csgEndPrimitive[CSG_SLOTS * CSG_SLOT_ENDS];  // object index
+uint csgSpanCount[CSG_SLOTS];
 
 const real CSG_INFINITY = 1.0 / 0.0;
 
-void addSpan(inout SpanList list, real t0, rvec3 n0, real t1, rvec3 n1, uint primitive) {
-    list.ends[2u * list.count] = SpanEnd(t0, n0, primitive);
-    list.ends[2u * list.count + 1u] = SpanEnd(t1, n1, primitive);
-    list.count++;
+void setCsgEnd(uint at, real t, rvec3 normal, uint primitive) {
+    csgEndT[at] = t;
+    csgEndNormal[at] = normal;
+    csgEndPrimitive[at] = primitive;
 }
 
-// The generic plane as a solid: the half-space z <= 0.
-void planeSpans(rvec3 o, rvec3 d, uint primitive, inout SpanList list) {
-    rvec3 up = rvec3(0.0, 0.0, 1.0);
-    if (d.z == 0.0) {
-        if (o.z <= 0.0) addSpan(list, -CSG_INFINITY, -up, CSG_INFINITY, up, primitive);
-        return;
-    }
-    real t = -o.z / d.z;
-    if (d.z > 0.0) addSpan(list, -CSG_INFINITY, -up, t, up, primitive);  // leaves upward
-    else addSpan(list, t, up, CSG_INFINITY, up, primitive);
-}
-
-// The inside-spans of primitive `index` along the whole line origin + t direction.
-SpanList primitiveSpans(uint index, rvec3 origin, rvec3 direction) {
-    SpanList list;
-    list.count = 0u;
+// The inside-spans of primitive `index` along the whole line origin + t
+// direction into slot `slot`: at most two, found in registers, then written
+// by one piece of code whatever the shape.
+void primitiveSpans(uint index, rvec3 origin, rvec3 direction, uint slot) {
     rvec3 o, d;
     toObjectSpace(index, origin, direction, o, d);
     uvec4 shape = objectShape(index);
-    real t0, t1;
-    rvec3 n0, n1;
+    uint spans = 0u;
+    real t0 = CSG_INFINITY, t1 = CSG_INFINITY, t2 = CSG_INFINITY, t3 = CSG_INFINITY;
+    rvec3 n0 = rvec3(0.0), n1 = rvec3(0.0), n2 = rvec3(0.0), n3 = rvec3(0.0);
     switch (shape.x) {
 #if VKRAY_SHAPE_SPHERE
-    case KIND_SPHERE: if (sphereSpan(o, d, t0, n0, t1, n1)) addSpan(list, t0, n0, t1, n1, index); break;
+    case KIND_SPHERE: spans = sphereSpan(o, d, t0, n0, t1, n1) ? 1u : 0u; break;
 #endif
 #if VKRAY_SHAPE_CUBE
-    case KIND_CUBE: if (cubeSpan(o, d, t0, n0, t1, n1)) addSpan(list, t0, n0, t1, n1, index); break;
+    case KIND_CUBE: spans = cubeSpan(o, d, t0, n0, t1, n1) ? 1u : 0u; break;
 #endif
 #if VKRAY_SHAPE_PLANE
-    case KIND_PLANE: planeSpans(o, d, index, list); break;
+    case KIND_PLANE: {  // the generic plane as a solid: the half-space z <= 0
+        rvec3 up = rvec3(0.0, 0.0, 1.0);
+        if (d.z == 0.0) {
+            spans = o.z <= 0.0 ? 1u : 0u;
+            t0 = -CSG_INFINITY;
+            n0 = -up;
+            t1 = CSG_INFINITY;
+            n1 = up;
+            break;
+        }
+        real t = -o.z / d.z;
+        spans = 1u;
+        t0 = d.z > 0.0 ? -CSG_INFINITY : t;  // leaves upward, or enters downward
+        n0 = d.z > 0.0 ? -up : up;
+        t1 = d.z > 0.0 ? t : CSG_INFINITY;
+        n1 = up;
+        break;
+    }
 #endif
 #if VKRAY_SHAPE_TAPERED_CYLINDER
     case KIND_TAPERED_CYLINDER: {  // an hourglass (s < 0) may give two spans
-        TaperedSpans spans = taperedCylinderSpans(o, d, taperOf(index));
-        if (spans.count > 0) addSpan(list, spans.t0, spans.n0, spans.t1, spans.n1, index);
-        if (spans.count > 1) addSpan(list, spans.t2, spans.n2, spans.t3, spans.n3, index);
+        TaperedSpans tapered = taperedCylinderSpans(o, d, taperOf(index));
+        spans = uint(tapered.count);
+        t0 = tapered.t0;
+        t1 = tapered.t1;
+        t2 = tapered.t2;
+        t3 = tapered.t3;
+        n0 = tapered.n0;
+        n1 = tapered.n1;
+        n2 = tapered.n2;
+        n3 = tapered.n3;
         break;
     }
 #endif
@@ -71,19 +85,35 @@ SpanList primitiveSpans(uint index, rvec3 origin, rvec3 direction) {
     case KIND_TORUS: {
         real ts[4];
         rvec3 ns[4];
-        int n = torusRoots(o, d, ts, ns);
-        for (int i = 0; i + 1 < n; i += 2) addSpan(list, ts[i], ns[i], ts[i + 1], ns[i + 1], index);
+        spans = uint(torusRoots(o, d, ts, ns)) / 2u;
+        t0 = ts[0];
+        t1 = ts[1];
+        t2 = ts[2];
+        t3 = ts[3];
+        n0 = ns[0];
+        n1 = ns[1];
+        n2 = ns[2];
+        n3 = ns[3];
         break;
     }
 #endif
 #if VKRAY_SHAPE_MESH
     case KIND_MESH:  // convex closed meshes only (the host checks): first and last crossing
-        if (meshSpan(shape.y, o, d, t0, n0, t1, n1)) addSpan(list, t0, n0, t1, n1, index);
+        spans = meshSpan(shape.y, o, d, t0, n0, t1, n1) ? 1u : 0u;
         break;
 #endif
     default: break;
     }
-    return list;
+    uint at = slot * CSG_SLOT_ENDS;
+    if (spans > 0u) {
+        setCsgEnd(at, t0, n0, index);
+        setCsgEnd(at + 1u, t1, n1, index);
+    }
+    if (spans > 1u) {
+        setCsgEnd(at + 2u, t2, n2, index);
+        setCsgEnd(at + 3u, t3, n3, index);
+    }
+    csgSpanCount[slot] = spans;
 }
 
 bool insideOf(uint op, bool inA, bool inB) {
@@ -92,36 +122,45 @@ bool insideOf(uint op, bool inA, bool inB) {
     return inA && !inB;  // CSG_DIFFERENCE
 }
 
-// Merges the span ends of a and b in t order and keeps the ends where the
-// combination's inside-ness changes. In a difference, b's surface bounds the
-// result from outside b, so its normals turn around.
-SpanList combine(uint op, SpanList a, SpanList b) {
-    SpanList result;
-    result.count = 0u;
-    uint i = 0u, j = 0u;
+// Merges the span ends of slots a and b in t order into slot `result`,
+// keeping the ends where the combination's inside-ness changes. In a
+// difference, b's surface bounds the result from outside b, so its normals
+// turn around.
+void combine(uint op, uint a, uint b, uint result) {
+    uint i = 0u, j = 0u, count = 0u;
     bool inA = false, inB = false, inside = false;
-    uint endsA = 2u * a.count, endsB = 2u * b.count;
-    SpanEnd start;
+    uint endsA = 2u * csgSpanCount[a], endsB = 2u * csgSpanCount[b];
+    uint baseA = a * CSG_SLOT_ENDS, baseB = b * CSG_SLOT_ENDS, baseResult = result * CSG_SLOT_ENDS;
+    uint start = 0u;  // where the span being kept begins, as for `end` below
+    bool startFlipped = false;
     while (i < endsA || j < endsB) {
         ++loopTurns;
-        bool fromA = j >= endsB || (i < endsA && a.ends[i].t <= b.ends[j].t);
-        SpanEnd end = fromA ? a.ends[i++] : b.ends[j++];
-        if (fromA) inA = !inA;
-        else {
+        bool fromA = j >= endsB || (i < endsA && csgEndT[baseA + i] <= csgEndT[baseB + j]);
+        uint end = fromA ? baseA + i : baseB + j;
+        bool flipped = !fromA && op == CSG_DIFFERENCE;
+        if (fromA) {
+            inA = !inA;
+            ++i;
+        } else {
             inB = !inB;
-            if (op == CSG_DIFFERENCE) end.normal = -end.normal;
+            ++j;
         }
         bool now = insideOf(op, inA, inB);
         if (now == inside) continue;
         inside = now;
-        if (inside) start = end;
-        else if (result.count < CSG_MAX_SPANS) {
-            result.ends[2u * result.count] = start;
-            result.ends[2u * result.count + 1u] = end;
-            result.count++;
+        if (inside) {
+            start = end;
+            startFlipped = flipped;
+        } else if (count < CSG_MAX_SPANS) {
+            uint at = baseResult + 2u * count;
+            setCsgEnd(at, csgEndT[start], startFlipped ? -csgEndNormal[start] : csgEndNormal[start],
+                      csgEndPrimitive[start]);
+            setCsgEnd(at + 1u, csgEndT[end], flipped ? -csgEndNormal[end] : csgEndNormal[end],
+                      csgEndPrimitive[end]);
+            count++;
         }
     }
-    return result;
+    csgSpanCount[result] = count;
 }
 
 // The nearest surface in (tMin, tMax) of the CSG tree whose post-order nodes
@@ -129,27 +168,33 @@ SpanList combine(uint op, SpanList a, SpanList b) {
 // evaluated with a stack of span lists.
 bool intersectCsg(uint first, rvec3 origin, rvec3 direction, real tMin, real tMax, out real t,
                   out rvec3 genericNormal, out uint primitive) {
-    SpanList stack[CSG_MAX_STACK];
+    // The stack's slots, and the one it does not hold: a permutation of them all.
+    uint stackSlot[CSG_MAX_STACK];
+    for (uint k = 0u; k < CSG_MAX_STACK; ++k) stackSlot[k] = k;
+    uint spare = CSG_MAX_STACK;
     uint top = 0u;
     uint nodeCount = csgNode(first).z;
     for (uint i = first; i < first + nodeCount; ++i) {
         ++loopTurns;
         uvec4 node = csgNode(i);
         if (node.x == CSG_LEAF) {
-            stack[top++] = primitiveSpans(node.y, origin, direction);
+            primitiveSpans(node.y, origin, direction, stackSlot[top++]);
         } else {
-            SpanList b = stack[--top];
-            SpanList a = stack[--top];
-            stack[top++] = combine(node.x, a, b);
+            uint a = stackSlot[top - 2u], b = stackSlot[top - 1u];
+            combine(node.x, a, b, spare);
+            stackSlot[top - 2u] = spare;
+            spare = a;
+            --top;
         }
     }
-    SpanList result = stack[0];
-    for (uint k = 0u; k < 2u * result.count; ++k) {
-        SpanEnd end = result.ends[k];
-        if (end.t > tMin && end.t < tMax) {
-            t = end.t;
-            genericNormal = end.normal;
-            primitive = end.primitive;
+    uint result = stackSlot[0] * CSG_SLOT_ENDS;
+    uint ends = 2u * csgSpanCount[stackSlot[0]];
+    for (uint k = result; k < result + ends; ++k) {
+        real at = csgEndT[k];
+        if (at > tMin && at < tMax) {
+            t = at;
+            genericNormal = csgEndNormal[k];
+            primitive = csgEndPrimitive[k];
             return true;
         }
     }
