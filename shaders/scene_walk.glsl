@@ -31,14 +31,16 @@ bool replaces(uint index, real t, Hit hit) {
 
 // Tests object `index`, of shape `kind`, for a scene walk (walkScene): a closer hit replaces
 // `hit`; for a shadow feeler (VKRAY_SHADOWS), any hit before hit.t passes the
-// surface's transparency into `through`. `meshes` as for intersectObject.
-void testObject(uint index, uint kind, bool meshes, rvec3 origin, rvec3 direction, bool feeler,
-                inout Hit hit, inout float through) {
+// surface's transparency into `through`. `meshes` and `booleans` as for
+// intersectObject.
+void testObject(uint index, uint kind, bool meshes, bool booleans, rvec3 origin, rvec3 direction,
+                bool feeler, inout Hit hit, inout float through) {
     real t;
     rvec3 n, geometric;
     uint surface;
     real tMax = reach(hit.t, feeler);
-    bool met = intersectObject(index, kind, meshes, origin, direction, tMax, t, n, geometric, surface);
+    bool met = intersectObject(index, kind, meshes, booleans, origin, direction, tMax, t, n,
+                               geometric, surface);
 #if VKRAY_STRESS_OUTPUT
     stressNoteTest(index, feeler, met);
 #endif
@@ -59,6 +61,49 @@ void testObject(uint index, uint kind, bool meshes, rvec3 origin, rvec3 directio
         hit.triangle = NO_TRIANGLE;
 #endif
     }
+}
+
+// CSG objects met by a walk wait in a list and are tested after the other
+// objects (testPendingBooleans), not among them: on lavapipe every object
+// test runs the code of every shape it may be, and CSG's evaluation costs
+// many times a closed-form shape's. So a walk pays it once, not at every
+// object. A full list is tested before the walk goes on.
+#if VKRAY_CSG
+const uint PENDING_BOOLEANS_MAX = 8u;
+uint pendingBooleans[PENDING_BOOLEANS_MAX];
+uint pendingBooleanCount;
+
+void testPendingBooleans(rvec3 origin, rvec3 direction, bool feeler, inout Hit hit,
+                         inout float through) {
+    for (uint k = 0u; k < pendingBooleanCount && through > 0.0; ++k) {
+        ++loopTurns;
+        testObject(pendingBooleans[k], KIND_BOOLEAN, false, true, origin, direction, feeler, hit,
+                   through);
+    }
+    pendingBooleanCount = 0u;
+}
+#endif
+
+// Whether the walk can take one more CSG object (always, without CSG).
+bool pendingBooleansHaveRoom() {
+#if VKRAY_CSG
+    return pendingBooleanCount < PENDING_BOOLEANS_MAX;
+#else
+    return true;
+#endif
+}
+
+// Tests object `index` of a walk's loop, or puts it on the list of CSG
+// objects to test after the others.
+void testOrKeepObject(uint index, uint kind, bool meshes, rvec3 origin, rvec3 direction,
+                      bool feeler, inout Hit hit, inout float through) {
+#if VKRAY_CSG
+    if (kind == KIND_BOOLEAN) {
+        pendingBooleans[pendingBooleanCount++] = index;
+        return;
+    }
+#endif
+    testObject(index, kind, meshes, false, origin, direction, feeler, hit, through);
 }
 
 #if VKRAY_MESH_INSTANCES
@@ -144,10 +189,10 @@ void testTriangle(uint index, bool feeler, inout MeshVisit visit, inout Hit hit,
 // tested once: for a ray (feeler false, tMax infinite) `hit` ends as the
 // closest hit; for a shadow feeler (tMax = the light's distance) `through`
 // ends as the product of the transparencies of the objects met, the walk
-// stopping at 0. This is the shader's only call of testObject: lavapipe
-// inlines every function, so one call site keeps the shapes' code (CSG
-// above all) compiled once, or VKRAY_OBJECTS times when the loop is unrolled
-// (closed-form shapes only, shader_variant.cpp).
+// stopping at 0. Lavapipe inlines every function: the walk calls
+// testObject once for every shape but CSG (compiled VKRAY_OBJECTS times when
+// the loop is unrolled: closed-form shapes only, shader_variant.cpp) and
+// once for CSG alone (testPendingBooleans).
 void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hit,
                out float through) {
     hit.t = tMax;
@@ -160,6 +205,9 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
     hit.barycentric = rvec3(0.0);
 #endif
     through = 1.0;
+#if VKRAY_CSG
+    pendingBooleanCount = 0u;
+#endif
 #if VKRAY_OBJECT_BVH
     // The unbounded objects (planes) first, as if a leaf, then the BVH's
     // leaves front to back: each turn of the inner loop tests the two
@@ -196,13 +244,19 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
         stackEnter[0] = enter;
         top = 1u;
     }
+#if VKRAY_CSG
+    bool paused = true;  // by a full CSG list; the walk goes on after its test
+    while (paused) {
+        paused = false;
+#endif
     while (through > 0.0) {
         loopTurns += leafCount;
         uint objects = leafCount;
 #if VKRAY_MESH_INSTANCES
         if (visit.inside) objects = 0u;
 #endif
-        for (uint i = leafFirst; i < leafFirst + objects && through > 0.0; ++i) {
+        uint i = leafFirst;
+        for (; i < leafFirst + objects && through > 0.0 && pendingBooleansHaveRoom(); ++i) {
             uint object = objectAt(i), kind = objectShape(object).x;
 #if VKRAY_MESH_INSTANCES
             if (kind == KIND_MESH) {
@@ -211,8 +265,17 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
                 continue;
             }
 #endif
-            testObject(object, kind, MESHES_IN_TESTS, origin, direction, feeler, hit, through);
+            testOrKeepObject(object, kind, MESHES_IN_TESTS, origin, direction, feeler, hit, through);
         }
+#if VKRAY_CSG
+        if (i < leafFirst + objects && through > 0.0) {
+            // The CSG list is full: the rest of this leaf after its test.
+            leafCount = leafFirst + objects - i;
+            leafFirst = i;
+            paused = true;
+            break;
+        }
+#endif
 #if VKRAY_MESH_INSTANCES
         uint triangles = visit.inside ? leafCount : 0u;
         for (uint i = visit.triangles + leafFirst;
@@ -306,6 +369,11 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
 #endif
         if (leafCount == 0u) break;
     }
+#if VKRAY_CSG
+        testPendingBooleans(origin, direction, feeler, hit, through);
+        paused = paused && through > 0.0;
+    }
+#endif
 #if VKRAY_MESH_INSTANCES
     // The normals of the mesh's hit triangle, as intersectMesh gives them.
     if (hit.triangle != NO_TRIANGLE)
@@ -324,11 +392,20 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
     const uint kinds[VKRAY_OBJECTS] = uint[](VKRAY_OBJECT_KINDS);
     loopTurns += VKRAY_OBJECTS;
     [[unroll]] for (uint i = 0u; i < VKRAY_OBJECTS; ++i)
-        testObject(i, kinds[i], true, origin, direction, feeler, hit, through);
+        testObject(i, kinds[i], true, false, origin, direction, feeler, hit, through);
 #else
     loopTurns += frame.image.w;
-    for (uint i = 0u; i < frame.image.w && through > 0.0; ++i)
-        testObject(i, objectShape(i).x, true, origin, direction, feeler, hit, through);
+    uint next = 0u;
+#if VKRAY_CSG
+    do {
+#endif
+        for (; next < frame.image.w && through > 0.0 && pendingBooleansHaveRoom(); ++next)
+            testOrKeepObject(next, objectShape(next).x, true, origin, direction, feeler, hit,
+                             through);
+#if VKRAY_CSG
+        testPendingBooleans(origin, direction, feeler, hit, through);
+    } while (next < frame.image.w && through > 0.0);
+#endif
 #endif
     if (!feeler && hit.object < 0) hit.t = INFINITY;
 }

@@ -193,14 +193,16 @@ const uint NO_TRIANGLE = 0xFFFFFFFFu;
 // The nearest hit of object `index`, of shape `kind` (KIND_*), in (0, tMax);
 // for a CSG object, the primitive whose surface it is. `geometric` differs
 // from n only on meshes. Where the kind is a constant (an unrolled walk),
-// the compiler leaves only that shape's code; where `meshes` is false (a
-// constant: a walk that enters meshes itself), it leaves the mesh's out.
-bool intersectObject(uint index, uint kind, bool meshes, rvec3 origin, rvec3 direction, real tMax,
-                     out real t, out rvec3 n, out rvec3 geometric, out uint surface) {
+// the compiler leaves only that shape's code; where `meshes` or `booleans`
+// is false (a constant: a walk that enters meshes itself, or tests CSG
+// objects after the others), it leaves the mesh's or CSG's out.
+bool intersectObject(uint index, uint kind, bool meshes, bool booleans, rvec3 origin,
+                     rvec3 direction, real tMax, out real t, out rvec3 n, out rvec3 geometric,
+                     out uint surface) {
     const real tMin = T_MIN;
     surface = index;
 #if VKRAY_CSG
-    if (kind == KIND_BOOLEAN) {
+    if (booleans && kind == KIND_BOOLEAN) {
         // Meshes in CSG are convex (the host checks): their spans carry the
         // interpolated normal only.
         bool hit = intersectCsg(objectShape(index).y, origin, direction, tMin, tMax, t, n, surface);
@@ -304,8 +306,8 @@ void recordObjectTests(rvec3 origin, rvec3 direction) {
         toObjectSpace(i, origin, direction, o, d);
         real t;
         uint surface;
-        if (!intersectObject(i, objectShape(i).x, true, origin, direction, INFINITY, t, n, geometric,
-                             surface))
+        if (!intersectObject(i, objectShape(i).x, true, true, origin, direction, INFINITY, t, n,
+                             geometric, surface))
             t = INFINITY;
         debugEntries[i] = GpuDebugEntry(vec4(o, t), vec4(d, 0.0));
     }

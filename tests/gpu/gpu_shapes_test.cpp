@@ -187,6 +187,26 @@ TEST(GpuShapes, CsgCountsTwoSpansForAnHourglass) {
     }
 }
 
+// A walk keeps the CSG objects it meets in a list of 8 and tests them after
+// the others, a full list before it goes on. Twelve half-spaces z <= c (a
+// plane minus a far sphere: unbounded, so all in the walk's first leaf, or
+// in the loop over every object) are met by a ray straight down; the highest,
+// the last object, is the hit: it is only reached after the list's first test.
+TEST(GpuShapes, CsgObjectsBeyondAFullListOfThemAreTested) {
+    std::string halfSpaces;
+    for (int i = 0; i < 12; ++i)
+        halfSpaces += "push translate 0 0 " + std::to_string(i) +
+                      " difference plane push translate 50 50 -50 sphere pop pop\n";
+    // Alone: the loop over every object; with ten spheres aside: the BVH walk.
+    std::string spheres;
+    for (int i = 0; i < 10; ++i)
+        spheres += "push translate " + std::to_string(40 + 3 * i) + " 0 0 sphere pop\n";
+    for (const std::string& sdl : {halfSpaces, halfSpaces + spheres}) {
+        SCOPED_TRACE(sdl.size() > halfSpaces.size() ? "BVH walk" : "every object in turn");
+        expectHit(traceOne(sdl, {0.25, 0.5, 100}, {0.25, 0.5, 0}, {0, 1, 0}), 11, 89.0, {0, 0, 1});
+    }
+}
+
 TEST(GpuShapes, ObjectBvhFindsTheSameObjectsAsTestingEach) {
     // 40 spheres in a row (a BVH variant) against the same scene cut to
     // their first 8 (no BVH): the first 8 must be hit identically.
