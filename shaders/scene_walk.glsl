@@ -31,16 +31,15 @@ bool replaces(uint index, real t, Hit hit) {
 
 // Tests object `index`, of shape `kind`, for a scene walk (walkScene): a closer hit replaces
 // `hit`; for a shadow feeler (VKRAY_SHADOWS), any hit before hit.t passes the
-// surface's transparency into `through`. `meshes` and `booleans` as for
-// intersectObject.
-void testObject(uint index, uint kind, bool meshes, bool booleans, rvec3 origin, rvec3 direction,
-                bool feeler, inout Hit hit, inout float through) {
+// surface's transparency into `through`. `shapes` as for intersectObject.
+void testObject(uint index, uint kind, uint shapes, rvec3 origin, rvec3 direction, bool feeler,
+                inout Hit hit, inout float through) {
     real t;
     rvec3 n, geometric;
     uint surface;
     real tMax = reach(hit.t, feeler);
-    bool met = intersectObject(index, kind, meshes, booleans, origin, direction, tMax, t, n,
-                               geometric, surface);
+    bool met = intersectObject(index, kind, shapes, origin, direction, tMax, t, n, geometric,
+                               surface);
 #if VKRAY_STRESS_OUTPUT
     stressNoteTest(index, feeler, met);
 #endif
@@ -63,47 +62,61 @@ void testObject(uint index, uint kind, bool meshes, bool booleans, rvec3 origin,
     }
 }
 
-// CSG objects met by a walk wait in a list and are tested after the other
-// objects (testPendingBooleans), not among them: on lavapipe every object
-// test runs the code of every shape it may be, and CSG's evaluation costs
-// many times a closed-form shape's. So a walk pays it once, not at every
-// object. A full list is tested before the walk goes on.
-#if VKRAY_CSG
-const uint PENDING_BOOLEANS_MAX = 8u;
-uint pendingBooleans[PENDING_BOOLEANS_MAX];
-uint pendingBooleanCount;
+// The objects of costly shapes (CSG, the torus) that a walk meets wait in a
+// list and are tested after the others (testKeptObjects), not among them:
+// on lavapipe every object test runs the code of every shape it may be, and
+// CSG's evaluation or the torus's quartic costs many times a closed-form
+// shape's test. So a walk pays that code once, not at every object. A full
+// list is tested before the walk goes on. Tori are kept only where other
+// shapes' tests gain from it: a scene of tori alone would pay the list for
+// nothing (0.87x).
+#define VKRAY_KEEPS_TORUS                                                                 \
+    (VKRAY_SHAPE_TORUS && (VKRAY_SHAPE_SPHERE || VKRAY_SHAPE_PLANE || VKRAY_SHAPE_SQUARE || \
+                           VKRAY_SHAPE_CUBE || VKRAY_SHAPE_TAPERED_CYLINDER || VKRAY_SHAPE_MESH))
+#define VKRAY_KEPT_OBJECTS (VKRAY_CSG || VKRAY_KEEPS_TORUS)
+#if VKRAY_KEPT_OBJECTS
+#if VKRAY_KEEPS_TORUS
+const uint KEPT_SHAPES = (1u << KIND_BOOLEAN) | (1u << KIND_TORUS);
+#else
+const uint KEPT_SHAPES = 1u << KIND_BOOLEAN;
+#endif
+const uint KEPT_OBJECTS_MAX = 8u;
+uint keptObjects[KEPT_OBJECTS_MAX];
+uint keptObjectCount;
 
-void testPendingBooleans(rvec3 origin, rvec3 direction, bool feeler, inout Hit hit,
-                         inout float through) {
-    for (uint k = 0u; k < pendingBooleanCount && through > 0.0; ++k) {
+void testKeptObjects(rvec3 origin, rvec3 direction, bool feeler, inout Hit hit, inout float through) {
+    for (uint k = 0u; k < keptObjectCount && through > 0.0; ++k) {
         ++loopTurns;
-        testObject(pendingBooleans[k], KIND_BOOLEAN, false, true, origin, direction, feeler, hit,
+        uint object = keptObjects[k];
+        testObject(object, objectShape(object).x, KEPT_SHAPES, origin, direction, feeler, hit,
                    through);
     }
-    pendingBooleanCount = 0u;
+    keptObjectCount = 0u;
 }
+#else
+const uint KEPT_SHAPES = 0u;
 #endif
 
-// Whether the walk can take one more CSG object (always, without CSG).
-bool pendingBooleansHaveRoom() {
-#if VKRAY_CSG
-    return pendingBooleanCount < PENDING_BOOLEANS_MAX;
+// Whether the walk can keep one more object (always, with nothing to keep).
+bool keptObjectsHaveRoom() {
+#if VKRAY_KEPT_OBJECTS
+    return keptObjectCount < KEPT_OBJECTS_MAX;
 #else
     return true;
 #endif
 }
 
-// Tests object `index` of a walk's loop, or puts it on the list of CSG
-// objects to test after the others.
-void testOrKeepObject(uint index, uint kind, bool meshes, rvec3 origin, rvec3 direction,
+// Tests object `index` of a walk's loop, one of `shapes`, or keeps it for
+// later (KEPT_SHAPES).
+void testOrKeepObject(uint index, uint kind, uint shapes, rvec3 origin, rvec3 direction,
                       bool feeler, inout Hit hit, inout float through) {
-#if VKRAY_CSG
-    if (kind == KIND_BOOLEAN) {
-        pendingBooleans[pendingBooleanCount++] = index;
+#if VKRAY_KEPT_OBJECTS
+    if (among(KEPT_SHAPES, kind)) {
+        keptObjects[keptObjectCount++] = index;
         return;
     }
 #endif
-    testObject(index, kind, meshes, false, origin, direction, feeler, hit, through);
+    testObject(index, kind, shapes & ~KEPT_SHAPES, origin, direction, feeler, hit, through);
 }
 
 #if VKRAY_MESH_INSTANCES
@@ -190,9 +203,9 @@ void testTriangle(uint index, bool feeler, inout MeshVisit visit, inout Hit hit,
 // closest hit; for a shadow feeler (tMax = the light's distance) `through`
 // ends as the product of the transparencies of the objects met, the walk
 // stopping at 0. Lavapipe inlines every function: the walk calls
-// testObject once for every shape but CSG (compiled VKRAY_OBJECTS times when
-// the loop is unrolled: closed-form shapes only, shader_variant.cpp) and
-// once for CSG alone (testPendingBooleans).
+// testObject once for the shapes it does not keep (compiled VKRAY_OBJECTS
+// times when the loop is unrolled: closed-form shapes only,
+// shader_variant.cpp) and once for those it keeps (testKeptObjects).
 void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hit,
                out float through) {
     hit.t = tMax;
@@ -205,8 +218,8 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
     hit.barycentric = rvec3(0.0);
 #endif
     through = 1.0;
-#if VKRAY_CSG
-    pendingBooleanCount = 0u;
+#if VKRAY_KEPT_OBJECTS
+    keptObjectCount = 0u;
 #endif
 #if VKRAY_OBJECT_BVH
     // The unbounded objects (planes) first, as if a leaf, then the BVH's
@@ -223,7 +236,7 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
 #if VKRAY_MESH_INSTANCES
     // The objects' path, a leaf's meshes, a mesh's end mark and its path.
     const uint STACK_SIZE = 2u * BVH_STACK_SIZE + BVH_LEAF_MAX + 1u;
-    const bool MESHES_IN_TESTS = false;
+    const uint WALK_SHAPES = ALL_SHAPES & ~(1u << KIND_MESH);  // meshes are entered
     MeshVisit visit;
     visit.inside = false;
     visit.leaving = false;
@@ -232,7 +245,7 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
     bool entering = false;
 #else
     const uint STACK_SIZE = BVH_STACK_SIZE;
-    const bool MESHES_IN_TESTS = true;
+    const uint WALK_SHAPES = ALL_SHAPES;
 #endif
     uint stack[STACK_SIZE];  // nodes to visit (bvhNodeCode), with where the ray enters them
     real stackEnter[STACK_SIZE];
@@ -244,8 +257,8 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
         stackEnter[0] = enter;
         top = 1u;
     }
-#if VKRAY_CSG
-    bool paused = true;  // by a full CSG list; the walk goes on after its test
+#if VKRAY_KEPT_OBJECTS
+    bool paused = true;  // by a full list of kept objects; the walk goes on after their tests
     while (paused) {
         paused = false;
 #endif
@@ -256,7 +269,7 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
         if (visit.inside) objects = 0u;
 #endif
         uint i = leafFirst;
-        for (; i < leafFirst + objects && through > 0.0 && pendingBooleansHaveRoom(); ++i) {
+        for (; i < leafFirst + objects && through > 0.0 && keptObjectsHaveRoom(); ++i) {
             uint object = objectAt(i), kind = objectShape(object).x;
 #if VKRAY_MESH_INSTANCES
             if (kind == KIND_MESH) {
@@ -265,11 +278,11 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
                 continue;
             }
 #endif
-            testOrKeepObject(object, kind, MESHES_IN_TESTS, origin, direction, feeler, hit, through);
+            testOrKeepObject(object, kind, WALK_SHAPES, origin, direction, feeler, hit, through);
         }
-#if VKRAY_CSG
+#if VKRAY_KEPT_OBJECTS
         if (i < leafFirst + objects && through > 0.0) {
-            // The CSG list is full: the rest of this leaf after its test.
+            // The list of kept objects is full: the rest of this leaf after their tests.
             leafCount = leafFirst + objects - i;
             leafFirst = i;
             paused = true;
@@ -369,8 +382,8 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
 #endif
         if (leafCount == 0u) break;
     }
-#if VKRAY_CSG
-        testPendingBooleans(origin, direction, feeler, hit, through);
+#if VKRAY_KEPT_OBJECTS
+        testKeptObjects(origin, direction, feeler, hit, through);
         paused = paused && through > 0.0;
     }
 #endif
@@ -392,18 +405,18 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
     const uint kinds[VKRAY_OBJECTS] = uint[](VKRAY_OBJECT_KINDS);
     loopTurns += VKRAY_OBJECTS;
     [[unroll]] for (uint i = 0u; i < VKRAY_OBJECTS; ++i)
-        testObject(i, kinds[i], true, false, origin, direction, feeler, hit, through);
+        testObject(i, kinds[i], ALL_SHAPES, origin, direction, feeler, hit, through);
 #else
     loopTurns += frame.image.w;
     uint next = 0u;
-#if VKRAY_CSG
+#if VKRAY_KEPT_OBJECTS
     do {
 #endif
-        for (; next < frame.image.w && through > 0.0 && pendingBooleansHaveRoom(); ++next)
-            testOrKeepObject(next, objectShape(next).x, true, origin, direction, feeler, hit,
+        for (; next < frame.image.w && through > 0.0 && keptObjectsHaveRoom(); ++next)
+            testOrKeepObject(next, objectShape(next).x, ALL_SHAPES, origin, direction, feeler, hit,
                              through);
-#if VKRAY_CSG
-        testPendingBooleans(origin, direction, feeler, hit, through);
+#if VKRAY_KEPT_OBJECTS
+        testKeptObjects(origin, direction, feeler, hit, through);
     } while (next < frame.image.w && through > 0.0);
 #endif
 #endif

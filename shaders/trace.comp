@@ -190,19 +190,23 @@ struct Hit {
 };
 const uint NO_TRIANGLE = 0xFFFFFFFFu;
 
+// Sets of shapes (bit KIND_* set) that a call of intersectObject may meet.
+const uint ALL_SHAPES = 0xFFFFFFFFu;
+bool among(uint shapes, uint kind) { return (shapes & (1u << kind)) != 0u; }
+
 // The nearest hit of object `index`, of shape `kind` (KIND_*), in (0, tMax);
 // for a CSG object, the primitive whose surface it is. `geometric` differs
-// from n only on meshes. Where the kind is a constant (an unrolled walk),
-// the compiler leaves only that shape's code; where `meshes` or `booleans`
-// is false (a constant: a walk that enters meshes itself, or tests CSG
-// objects after the others), it leaves the mesh's or CSG's out.
-bool intersectObject(uint index, uint kind, bool meshes, bool booleans, rvec3 origin,
-                     rvec3 direction, real tMax, out real t, out rvec3 n, out rvec3 geometric,
-                     out uint surface) {
+// from n only on meshes. `shapes` (a constant at each call) holds the shapes
+// `kind` may be; where it is a constant too (an unrolled walk), the compiler
+// leaves only the code of those shapes, or of that one.
+bool intersectObject(uint index, uint kind, uint shapes, rvec3 origin, rvec3 direction, real tMax,
+                     out real t, out rvec3 n, out rvec3 geometric, out uint surface) {
     const real tMin = T_MIN;
     surface = index;
+    t = INFINITY;
+    n = rvec3(0.0);
 #if VKRAY_CSG
-    if (booleans && kind == KIND_BOOLEAN) {
+    if (among(shapes, KIND_BOOLEAN) && kind == KIND_BOOLEAN) {
         // Meshes in CSG are convex (the host checks): their spans carry the
         // interpolated normal only.
         bool hit = intersectCsg(objectShape(index).y, origin, direction, tMin, tMax, t, n, surface);
@@ -213,29 +217,41 @@ bool intersectObject(uint index, uint kind, bool meshes, bool booleans, rvec3 or
     rvec3 o, d;
     toObjectSpace(index, origin, direction, o, d);
 #if VKRAY_SHAPE_MESH
-    if (meshes && kind == KIND_MESH)
+    if (among(shapes, KIND_MESH) && kind == KIND_MESH)
         return intersectMesh(objectShape(index).y, o, d, tMin, tMax, t, n, geometric);
 #endif
     bool hit = false;
     switch (kind) {
 #if VKRAY_SHAPE_SPHERE
-    case KIND_SPHERE: hit = intersectSphere(o, d, tMin, tMax, t, n); break;
+    case KIND_SPHERE:
+        if (among(shapes, KIND_SPHERE)) hit = intersectSphere(o, d, tMin, tMax, t, n);
+        break;
 #endif
 #if VKRAY_SHAPE_PLANE
-    case KIND_PLANE: hit = intersectPlane(o, d, tMin, tMax, t, n); break;
+    case KIND_PLANE:
+        if (among(shapes, KIND_PLANE)) hit = intersectPlane(o, d, tMin, tMax, t, n);
+        break;
 #endif
 #if VKRAY_SHAPE_SQUARE
-    case KIND_SQUARE: hit = intersectSquare(o, d, tMin, tMax, t, n); break;
+    case KIND_SQUARE:
+        if (among(shapes, KIND_SQUARE)) hit = intersectSquare(o, d, tMin, tMax, t, n);
+        break;
 #endif
 #if VKRAY_SHAPE_CUBE
-    case KIND_CUBE: hit = intersectCube(o, d, tMin, tMax, t, n); break;
+    case KIND_CUBE:
+        if (among(shapes, KIND_CUBE)) hit = intersectCube(o, d, tMin, tMax, t, n);
+        break;
 #endif
 #if VKRAY_SHAPE_TAPERED_CYLINDER
     case KIND_TAPERED_CYLINDER:
-        hit = intersectTaperedCylinder(o, d, taperOf(index), tMin, tMax, t, n); break;
+        if (among(shapes, KIND_TAPERED_CYLINDER))
+            hit = intersectTaperedCylinder(o, d, taperOf(index), tMin, tMax, t, n);
+        break;
 #endif
 #if VKRAY_SHAPE_TORUS
-    case KIND_TORUS: hit = intersectTorus(o, d, tMin, tMax, t, n); break;
+    case KIND_TORUS:
+        if (among(shapes, KIND_TORUS)) hit = intersectTorus(o, d, tMin, tMax, t, n);
+        break;
 #endif
     default: break;
     }
@@ -306,7 +322,7 @@ void recordObjectTests(rvec3 origin, rvec3 direction) {
         toObjectSpace(i, origin, direction, o, d);
         real t;
         uint surface;
-        if (!intersectObject(i, objectShape(i).x, true, true, origin, direction, INFINITY, t, n,
+        if (!intersectObject(i, objectShape(i).x, ALL_SHAPES, origin, direction, INFINITY, t, n,
                              geometric, surface))
             t = INFINITY;
         debugEntries[i] = GpuDebugEntry(vec4(o, t), vec4(d, 0.0));
