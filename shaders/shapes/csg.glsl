@@ -123,7 +123,9 @@ bool insideOf(uint op, bool inA, bool inB) {
 }
 
 // Merges the span ends of slots a and b in t order into slot `result`,
-// keeping the ends where the combination's inside-ness changes. In a
+// keeping the ends where the combination's inside-ness changes: each is
+// written as it comes (a kept span's start when the result goes in, its end
+// when it comes out), one end a turn, the code of one write. In a
 // difference, b's surface bounds the result from outside b, so its normals
 // turn around.
 void combine(uint op, uint a, uint b, uint result) {
@@ -131,8 +133,6 @@ void combine(uint op, uint a, uint b, uint result) {
     bool inA = false, inB = false, inside = false;
     uint endsA = 2u * csgSpanCount[a], endsB = 2u * csgSpanCount[b];
     uint baseA = a * CSG_SLOT_ENDS, baseB = b * CSG_SLOT_ENDS, baseResult = result * CSG_SLOT_ENDS;
-    uint start = 0u;  // where the span being kept begins, as for `end` below
-    bool startFlipped = false;
     while (i < endsA || j < endsB) {
         ++loopTurns;
         bool fromA = j >= endsB || (i < endsA && csgEndT[baseA + i] <= csgEndT[baseB + j]);
@@ -146,19 +146,12 @@ void combine(uint op, uint a, uint b, uint result) {
             ++j;
         }
         bool now = insideOf(op, inA, inB);
-        if (now == inside) continue;
-        inside = now;
-        if (inside) {
-            start = end;
-            startFlipped = flipped;
-        } else if (count < CSG_MAX_SPANS) {
-            uint at = baseResult + 2u * count;
-            setCsgEnd(at, csgEndT[start], startFlipped ? -csgEndNormal[start] : csgEndNormal[start],
-                      csgEndPrimitive[start]);
-            setCsgEnd(at + 1u, csgEndT[end], flipped ? -csgEndNormal[end] : csgEndNormal[end],
-                      csgEndPrimitive[end]);
-            count++;
+        if (now != inside && count < CSG_MAX_SPANS) {
+            setCsgEnd(baseResult + 2u * count + (now ? 0u : 1u), csgEndT[end],
+                      flipped ? -csgEndNormal[end] : csgEndNormal[end], csgEndPrimitive[end]);
+            if (!now) count++;
         }
+        inside = now;
     }
     csgSpanCount[result] = count;
 }
