@@ -83,17 +83,16 @@ void primitiveSpans(uint index, rvec3 origin, rvec3 direction, uint slot) {
 #endif
 #if VKRAY_SHAPE_TORUS
     case KIND_TORUS: {
-        real ts[4];
-        rvec3 ns[4];
-        spans = uint(torusRoots(o, d, ts, ns)) / 2u;
-        t0 = ts[0];
-        t1 = ts[1];
-        t2 = ts[2];
-        t3 = ts[3];
-        n0 = ns[0];
-        n1 = ns[1];
-        n2 = ns[2];
-        n3 = ns[3];
+        TorusCrossings crossings = torusCrossings(o, d);
+        spans = uint(crossings.count) / 2u;
+        t0 = crossings.t.x;
+        t1 = crossings.t.y;
+        t2 = crossings.t.z;
+        t3 = crossings.t.w;
+        n0 = crossings.n0;
+        n1 = crossings.n1;
+        n2 = crossings.n2;
+        n3 = crossings.n3;
         break;
     }
 #endif

@@ -11,6 +11,20 @@
 // kept inside its bracket (Yuksel, HPG 2022); polish with one Newton step on
 // F itself. Tangent double roots (no sign change) are missed: a grazing ray.
 
+// Up to four roots travel in a vector, read and written through selects
+// (rootAt, withRoot): lavapipe keeps an array indexed at run time in memory
+// and writes each word of it in a loop over the lanes; a vector stays in
+// registers. (Arrays indexed by constants only, as the coefficients below
+// once the loops over them are unrolled, stay in registers too.)
+real rootAt(rvec4 roots, int i) {
+    return i == 0 ? roots.x : (i == 1 ? roots.y : (i == 2 ? roots.z : roots.w));
+}
+
+rvec4 withRoot(rvec4 roots, int i, real x) {
+    return rvec4(i == 0 ? x : roots.x, i == 1 ? x : roots.y, i == 2 ? x : roots.z,
+                 i == 3 ? x : roots.w);
+}
+
 real polynomialAt(real c[5], int degree, real x) {
     real f = c[degree];
     for (int i = degree - 1; i >= 0; --i) f = f * x + c[i];
@@ -40,10 +54,11 @@ real bracketedRoot(real c[5], int degree, real a, real b) {
 
 // The real roots in [lo, hi] of the polynomial of `degree` (2, 3 or 4) with
 // sign changes, ascending; returns how many. Degree 2 in closed form.
-int rootsQuadratic(real c0, real c1, real c2, real lo, real hi, out real roots[4]) {
+int rootsQuadratic(real c0, real c1, real c2, real lo, real hi, out rvec4 roots) {
     int n = 0;
+    roots = rvec4(0.0);
     if (c2 == 0.0) {
-        if (c1 != 0.0) { real x = -c0 / c1; if (x >= lo && x <= hi) roots[n++] = x; }
+        if (c1 != 0.0) { real x = -c0 / c1; if (x >= lo && x <= hi) roots = withRoot(roots, n++, x); }
         return n;
     }
     real disc = c1 * c1 - 4.0 * c2 * c0;
@@ -51,69 +66,97 @@ int rootsQuadratic(real c0, real c1, real c2, real lo, real hi, out real roots[4
     real q = -0.5 * (c1 + (c1 >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
     real x0 = q / c2, x1 = q != 0.0 ? c0 / q : x0;
     if (x0 > x1) { real s = x0; x0 = x1; x1 = s; }
-    if (x0 >= lo && x0 <= hi) roots[n++] = x0;
-    if (x1 >= lo && x1 <= hi) roots[n++] = x1;
+    if (x0 >= lo && x0 <= hi) roots = withRoot(roots, n++, x0);
+    if (x1 >= lo && x1 <= hi) roots = withRoot(roots, n++, x1);
     return n;
 }
 
 // Roots of a polynomial of `degree` on [lo, hi] between the given extrema.
-int rootsBetween(real c[5], int degree, real lo, real hi, real extrema[4], int extremaCount,
-                 out real roots[4]) {
+int rootsBetween(real c[5], int degree, real lo, real hi, rvec4 extrema, int extremaCount,
+                 out rvec4 roots) {
     int n = 0;
+    roots = rvec4(0.0);
     real a = lo;
     real fa = polynomialAt(c, degree, a);
     for (int i = 0; i <= extremaCount; ++i) {
-        real b = i < extremaCount ? extrema[i] : hi;
+        real b = i < extremaCount ? rootAt(extrema, i) : hi;
         real fb = polynomialAt(c, degree, b);
-        if (fa == 0.0 && n < 4) roots[n++] = a;
-        else if ((fa < 0.0) != (fb < 0.0) && fb != 0.0 && n < 4) roots[n++] = bracketedRoot(c, degree, a, b);
+        if (fa == 0.0 && n < 4) roots = withRoot(roots, n++, a);
+        else if ((fa < 0.0) != (fb < 0.0) && fb != 0.0 && n < 4)
+            roots = withRoot(roots, n++, bracketedRoot(c, degree, a, b));
         a = b;
         fa = fb;
     }
-    if (fa == 0.0 && n < 4) roots[n++] = a;
+    if (fa == 0.0 && n < 4) roots = withRoot(roots, n++, a);
     return n;
 }
 
-int quarticRoots(real c[5], real lo, real hi, out real roots[4]) {
+int quarticRoots(real c[5], real lo, real hi, out rvec4 roots) {
     // Derivative chain: quartic -> cubic -> quadratic (closed form).
     real cubic[5] = real[5](c[1], 2.0 * c[2], 3.0 * c[3], 4.0 * c[4], 0.0);
     // The cubic's extrema are the roots of its derivative, a quadratic.
-    real quadraticExtrema[4];
+    rvec4 quadraticExtrema;
     int e2 = rootsQuadratic(cubic[1], 2.0 * cubic[2], 3.0 * cubic[3], lo, hi, quadraticExtrema);
-    real cubicRoots[4];
+    rvec4 cubicRoots;
     int e3 = rootsBetween(cubic, 3, lo, hi, quadraticExtrema, e2, cubicRoots);
     return rootsBetween(c, 4, lo, hi, cubicRoots, e3, roots);
 }
 
-// Every crossing of the torus along the whole line o + d t, ascending in t,
-// with the outward normal at each; returns how many (0, 2 or 4 in general).
+// Every crossing of the torus along a line, ascending in t: `count` (0, 2 or
+// 4 in general) t values with the outward normal at each.
+struct TorusCrossings {
+    int count;
+    rvec4 t;
+    rvec3 n0, n1, n2, n3;
+};
+
+void setTorusNormal(inout TorusCrossings crossings, int i, rvec3 n) {
+    if (i == 0) crossings.n0 = n;
+    if (i == 1) crossings.n1 = n;
+    if (i == 2) crossings.n2 = n;
+    if (i == 3) crossings.n3 = n;
+}
+
+rvec3 torusNormalAt(TorusCrossings crossings, int i) {
+    return i == 0 ? crossings.n0 : (i == 1 ? crossings.n1 : (i == 2 ? crossings.n2 : crossings.n3));
+}
+
+// The crossings along the whole line o + d t.
 #if VKRAY_PRECISION_NAIVE
 // Naive (textbook): the quartic's coefficients straight from the ray's own
 // origin and direction. They grow like |o|^4 and cancel: from 100 units away
 // about half the hits flip (docs/numerics-background.md, "Torus"). Same root finder, no
 // origin shift, no unit direction, no polish.
-int torusRoots(rvec3 o, rvec3 d, out real ts[4], out rvec3 normals[4]) {
+TorusCrossings torusCrossings(rvec3 o, rvec3 d) {
     const real R = TORUS_MAJOR_RADIUS, r = TORUS_TUBE_RADIUS;
+    TorusCrossings crossings;
+    crossings.count = 0;
+    crossings.t = rvec4(0.0);
+    crossings.n0 = crossings.n1 = crossings.n2 = crossings.n3 = rvec3(0.0);
     real boundRadius = 1.01 * (R + r);
     real G = dot(d, d), H = dot(o, d), K = dot(o, o) + R * R - r * r;
     real disc = H * H - G * (dot(o, o) - boundRadius * boundRadius);
-    if (disc <= 0.0) return 0;
+    if (disc <= 0.0) return crossings;
     real lo = (-H - sqrt(disc)) / G, hi = (-H + sqrt(disc)) / G;
     real a2 = d.x * d.x + d.y * d.y, a1 = o.x * d.x + o.y * d.y, a0 = o.x * o.x + o.y * o.y;
     real c[5] = real[5](K * K - 4.0 * R * R * a0, 4.0 * H * K - 8.0 * R * R * a1,
                           4.0 * H * H + 2.0 * G * K - 4.0 * R * R * a2, 4.0 * G * H, G * G);
-    int n = quarticRoots(c, lo, hi, ts);
-    for (int i = 0; i < n; ++i) {
-        rvec3 p = o + ts[i] * d;
+    crossings.count = quarticRoots(c, lo, hi, crossings.t);
+    for (int i = 0; i < crossings.count; ++i) {
+        rvec3 p = o + rootAt(crossings.t, i) * d;
         real k = dot(p, p) + R * R - r * r;
-        normals[i] = 4.0 * k * p - 8.0 * R * R * rvec3(p.xy, 0.0);
+        setTorusNormal(crossings, i, 4.0 * k * p - 8.0 * R * R * rvec3(p.xy, 0.0));
     }
-    return n;
+    return crossings;
 }
 #else
 // Robust: origin shifted to the bounding sphere, unit direction, polish on F.
-int torusRoots(rvec3 o, rvec3 d, out real ts[4], out rvec3 normals[4]) {
+TorusCrossings torusCrossings(rvec3 o, rvec3 d) {
     const real R = TORUS_MAJOR_RADIUS, r = TORUS_TUBE_RADIUS;
+    TorusCrossings crossings;
+    crossings.count = 0;
+    crossings.t = rvec4(0.0);
+    crossings.n0 = crossings.n1 = crossings.n2 = crossings.n3 = rvec3(0.0);
     real dLength = sqrt(dot(d, d));
     rvec3 u = d / dLength;
     // The line through the bounding sphere (a little larger, so that F > 0 at
@@ -122,7 +165,7 @@ int torusRoots(rvec3 o, rvec3 d, out real ts[4], out rvec3 normals[4]) {
     real b = dot(o, u);
     rvec3 fPerp = o - b * u;
     real disc = boundRadius * boundRadius - dot(fPerp, fPerp);
-    if (disc <= 0.0) return 0;
+    if (disc <= 0.0) return crossings;
     real halfChord = sqrt(disc);
     real tEnter = -b - halfChord;
     rvec3 e = o + tEnter * u;  // the shifted origin: |e| = boundRadius
@@ -131,33 +174,33 @@ int torusRoots(rvec3 o, rvec3 d, out real ts[4], out rvec3 normals[4]) {
     real a2 = u.x * u.x + u.y * u.y, a1 = e.x * u.x + e.y * u.y, a0 = e.x * e.x + e.y * e.y;
     real c[5] = real[5](K * K - 4.0 * R * R * a0, 4.0 * H * K - 8.0 * R * R * a1,
                           4.0 * H * H + 2.0 * K - 4.0 * R * R * a2, 4.0 * H, 1.0);
-    real s[4];
-    int n = quarticRoots(c, 0.0, 2.0 * halfChord, s);
-    for (int i = 0; i < n; ++i) {
+    rvec4 s;
+    crossings.count = quarticRoots(c, 0.0, 2.0 * halfChord, s);
+    for (int i = 0; i < crossings.count; ++i) {
         // One Newton step on F at the point itself, then back to the caller's t.
-        rvec3 p = e + s[i] * u;
+        real si = rootAt(s, i);
+        rvec3 p = e + si * u;
         real k = dot(p, p) + R * R - r * r;
         real F = k * k - 4.0 * R * R * dot(p.xy, p.xy);
         rvec3 gradient = 4.0 * k * p - 8.0 * R * R * rvec3(p.xy, 0.0);
         real slope = dot(gradient, u);
-        if (slope != 0.0 && abs(F / slope) < 1e-2) s[i] -= F / slope;
-        p = e + s[i] * u;
+        if (slope != 0.0 && abs(F / slope) < 1e-2) si -= F / slope;
+        p = e + si * u;
         k = dot(p, p) + R * R - r * r;
-        normals[i] = 4.0 * k * p - 8.0 * R * R * rvec3(p.xy, 0.0);
-        ts[i] = (tEnter + s[i]) / dLength;
+        setTorusNormal(crossings, i, 4.0 * k * p - 8.0 * R * R * rvec3(p.xy, 0.0));
+        crossings.t = withRoot(crossings.t, i, (tEnter + si) / dLength);
     }
-    return n;
+    return crossings;
 }
 #endif
 
 bool intersectTorus(rvec3 o, rvec3 d, real tMin, real tMax, out real t, out rvec3 normal) {
-    real ts[4];
-    rvec3 normals[4];
-    int n = torusRoots(o, d, ts, normals);
-    for (int i = 0; i < n; ++i) {
-        if (ts[i] > tMin && ts[i] < tMax) {
-            t = ts[i];
-            normal = normals[i];
+    TorusCrossings crossings = torusCrossings(o, d);
+    for (int i = 0; i < crossings.count; ++i) {
+        real at = rootAt(crossings.t, i);
+        if (at > tMin && at < tMax) {
+            t = at;
+            normal = torusNormalAt(crossings, i);
             return true;
         }
     }
