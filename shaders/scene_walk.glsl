@@ -68,14 +68,11 @@ void testObject(uint index, uint kind, uint shapes, rvec3 origin, rvec3 directio
 // CSG's evaluation or the torus's quartic costs many times a closed-form
 // shape's test. So a walk pays that code once, not at every object. A full
 // list is tested before the walk goes on. Tori are kept only where other
-// shapes' tests gain from it: a scene of tori alone would pay the list for
-// nothing (0.87x).
-#define VKRAY_KEEPS_TORUS                                                                 \
-    (VKRAY_SHAPE_TORUS && (VKRAY_SHAPE_SPHERE || VKRAY_SHAPE_PLANE || VKRAY_SHAPE_SQUARE || \
-                           VKRAY_SHAPE_CUBE || VKRAY_SHAPE_TAPERED_CYLINDER || VKRAY_SHAPE_MESH))
-#define VKRAY_KEPT_OBJECTS (VKRAY_CSG || VKRAY_KEEPS_TORUS)
+// shapes' tests gain from it (VKRAY_KEEP_TORI, host/gpu/shader_variant.cpp):
+// a scene of tori alone would pay the list for nothing (0.87x).
+#define VKRAY_KEPT_OBJECTS (VKRAY_CSG || VKRAY_KEEP_TORI)
 #if VKRAY_KEPT_OBJECTS
-#if VKRAY_KEEPS_TORUS
+#if VKRAY_KEEP_TORI
 const uint KEPT_SHAPES = (1u << KIND_BOOLEAN) | (1u << KIND_TORUS);
 #else
 const uint KEPT_SHAPES = 1u << KIND_BOOLEAN;
@@ -204,7 +201,7 @@ void testTriangle(uint index, bool feeler, inout MeshVisit visit, inout Hit hit,
 // ends as the product of the transparencies of the objects met, the walk
 // stopping at 0. Lavapipe inlines every function: the walk calls
 // testObject once for the shapes it does not keep (compiled VKRAY_OBJECTS
-// times when the loop is unrolled: closed-form shapes only,
+// times when the loop is unrolled, each with one shape's code:
 // shader_variant.cpp) and once for those it keeps (testKeptObjects).
 void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hit,
                out float through) {
@@ -404,8 +401,15 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
 #endif
     const uint kinds[VKRAY_OBJECTS] = uint[](VKRAY_OBJECT_KINDS);
     loopTurns += VKRAY_OBJECTS;
+    // Kept objects (tori, CSG) only go on their list: their code, once, after.
     [[unroll]] for (uint i = 0u; i < VKRAY_OBJECTS; ++i)
-        testObject(i, kinds[i], ALL_SHAPES, origin, direction, feeler, hit, through);
+        testOrKeepObject(i, kinds[i], ALL_SHAPES, origin, direction, feeler, hit, through);
+#if VKRAY_KEPT_OBJECTS
+#if VKRAY_OBJECTS > 8
+#error "an unrolled walk of more than 8 objects could overflow the list of kept objects"
+#endif
+    testKeptObjects(origin, direction, feeler, hit, through);
+#endif
 #else
     loopTurns += frame.image.w;
     uint next = 0u;

@@ -64,6 +64,12 @@ bool tracesInOnePass(const ShaderFeatures& f) {
     return !f.has(Shading::Reflection) && !f.has(Shading::Refraction) && !f.has(Shading::Antialias);
 }
 
+bool keepsTori(const ShaderFeatures& features) {
+    const auto& k = features.kinds;
+    return k[KIND_TORUS] && (k[KIND_SPHERE] || k[KIND_PLANE] || k[KIND_SQUARE] || k[KIND_CUBE] ||
+                             k[KIND_TAPERED_CYLINDER] || k[KIND_MESH]);
+}
+
 ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bool allFeatures) {
     ShaderFeatures features;
     features.aovs = settings.aovs;
@@ -82,13 +88,14 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
         bounded += worldBounds(object, scene).finite() ? 1 : 0;
     features.objectBvh = bounded > kObjectBvhThreshold;
     // On lavapipe a loop over a count read at run time costs several object
-    // tests on every ray (BENCHMARKS.md); a constant count is unrolled. Each
-    // unrolled test inlines every shape's code, so the shapes with loops of
-    // their own (torus, mesh, CSG) keep the loop: their code is too large to
-    // be compiled eight times.
-    const bool closedForm =
-        !features.kinds[KIND_TORUS] && !features.kinds[KIND_MESH] && !features.kinds[KIND_BOOLEAN];
-    if (!allFeatures && !features.objectBvh && closedForm &&
+    // tests on every ray (BENCHMARKS.md); a constant count is unrolled, each
+    // test holding its object's shape's code alone. Tori and CSG objects
+    // unrolled are only put on the list of objects tested after the others
+    // (one copy of their code); a mesh's walk, or a torus that is not kept,
+    // would be compiled eight times: those keep the loop.
+    const bool unrollable =
+        !features.kinds[KIND_MESH] && (!features.kinds[KIND_TORUS] || keepsTori(features));
+    if (!allFeatures && !features.objectBvh && unrollable &&
         scene.objects.size() <= kObjectBvhThreshold) {
         features.unrolledObjects = std::uint32_t(scene.objects.size());
         for (const SceneObject& object : scene.objects)
@@ -113,6 +120,7 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines) {
     defines.emplace_back("VKRAY_AOVS", flag(features.aovs));
     defines.emplace_back("VKRAY_DEBUG_PIXEL", flag(features.debugPixel));
     defines.emplace_back("VKRAY_STRESS_OUTPUT", flag(features.stressOutput));
+    defines.emplace_back("VKRAY_KEEP_TORI", flag(keepsTori(features)));
     defines.emplace_back("VKRAY_OBJECTS", std::to_string(features.unrolledObjects));
     if (features.unrolledObjects > 0) {
         std::string kinds;
@@ -130,9 +138,10 @@ std::vector<std::string> variantFlags() {
     std::vector<std::string> flags;
     for (const GpuKind& kind : kGpuKinds) flags.push_back(kind.define);
     for (const GpuShading& shading : kGpuShading) flags.push_back(shading.define);
-    for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_BLOCKS", "VKRAY_AOVS",
-                              "VKRAY_DEBUG_PIXEL", "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET",
-                              "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64", "VKRAY_OBJECTS"})
+    for (const char* other :
+         {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_BLOCKS", "VKRAY_AOVS", "VKRAY_DEBUG_PIXEL",
+          "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET", "VKRAY_PRECISION_NAIVE",
+          "VKRAY_PRECISION_FP64", "VKRAY_KEEP_TORI", "VKRAY_OBJECTS"})
         flags.push_back(other);
     return flags;
 }

@@ -69,8 +69,8 @@ struct ShaderFeatures {
     bool stressOutput = false;  // `vkray stress`, `vkray pixel`: GpuStressSample per pixel
     bool doubles = false;       // --precision fp64: camera and M^-1 read in double
     // VKRAY_OBJECTS: the object count, when the shader tests each object in
-    // turn in a loop it unrolls (a few objects, no BVH, closed-form shapes
-    // only); 0: a loop over the count read at run time.
+    // turn in a loop it unrolls (a few objects, no BVH, no mesh, every torus
+    // kept: keepsTori); 0: a loop over the count read at run time.
     std::uint32_t unrolledObjects = 0;
     // VKRAY_OBJECT_KINDS: with an unrolled walk, each object's KIND_*, in
     // order: each test holds its object's shape's code alone.
@@ -79,6 +79,12 @@ struct ShaderFeatures {
     bool has(Shading s) const { return shading[size_t(s)]; }
     bool operator==(const ShaderFeatures&) const = default;
 };
+
+// Whether the walk keeps the variant's tori for tests after the other
+// objects' (VKRAY_KEEP_TORI; CSG objects always are): where another shape's
+// tests gain from leaving the torus's code out, not in a variant of tori
+// alone, which would pay the list for nothing.
+bool keepsTori(const ShaderFeatures& features);
 
 // Whether each invocation finishes its pixel in one dispatch: one ray a pixel
 // (its feelers included), no secondary rays, one sample. Its rays never

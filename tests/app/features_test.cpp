@@ -116,13 +116,13 @@ TEST_F(Features, VariantAllCompilesEveryFeatureAndBindsTheirBuffers) {
     RunResult run = vkray("features " + kScenes + "default.sdl --variant all -D EXTRA=2");
     ASSERT_EQ(run.status, 0) << run.output;
     EXPECT_EQ(field(run.output, "variant"), "all shapes+all shading+blocks");
-    EXPECT_EQ(
-        field(run.output, "defines"),
-        "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_SQUARE=1 VKRAY_SHAPE_CUBE=1 "
-        "VKRAY_SHAPE_TAPERED_CYLINDER=1 VKRAY_SHAPE_TORUS=1 VKRAY_SHAPE_MESH=1 VKRAY_CSG=1 "
-        "VKRAY_SHADOWS=1 VKRAY_REFLECTION=1 VKRAY_REFRACTION=1 VKRAY_TEXTURES=1 "
-        "VKRAY_PIXMAPS=1 VKRAY_ANTIALIAS=1 VKRAY_LIGHTS=1 VKRAY_BLOCKS=1 EXTRA=2 (every other "
-        "variant flag 0)");
+    EXPECT_EQ(field(run.output, "defines"),
+              "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_SQUARE=1 VKRAY_SHAPE_CUBE=1 "
+              "VKRAY_SHAPE_TAPERED_CYLINDER=1 VKRAY_SHAPE_TORUS=1 VKRAY_SHAPE_MESH=1 VKRAY_CSG=1 "
+              "VKRAY_SHADOWS=1 VKRAY_REFLECTION=1 VKRAY_REFRACTION=1 VKRAY_TEXTURES=1 "
+              "VKRAY_PIXMAPS=1 VKRAY_ANTIALIAS=1 VKRAY_LIGHTS=1 VKRAY_BLOCKS=1 VKRAY_KEEP_TORI=1 "
+              "EXTRA=2 (every other "
+              "variant flag 0)");
     // The scene's own needs are still reported as the scene's.
     EXPECT_EQ(field(run.output, "reflection").substr(0, 3), "no ") << run.output;
     // The pending rays (maxRecursionDepth 3 + 1 entries), the mesh, CSG and

@@ -103,20 +103,28 @@ TEST(ShaderVariant, AScenesOwnShadingOnly) {
     EXPECT_FALSE(hasDefine(plain, "VKRAY_SHADOWS"));
 }
 
-TEST(ShaderVariant, AFewClosedFormObjectsAreTestedInAnUnrolledLoop) {
+TEST(ShaderVariant, AFewObjectsWithoutMeshesAreTestedInAnUnrolledLoop) {
     EXPECT_EQ(featuresOfText("sphere cube plane").unrolledObjects, 3u);
     std::string eight;
     for (int i = 0; i < 8; ++i) eight += "sphere ";
     EXPECT_EQ(featuresOfText(eight).unrolledObjects, 8u);
-    // A BVH, the all-features shader (any scene) and shapes whose code
-    // holds loops of its own keep the loop over the run-time count.
+    // A BVH, the all-features shader (any scene), a mesh (its walk) and tori
+    // alone (their code not kept for after the walk) keep the loop over the
+    // run-time count.
     const std::string nine = eight + "sphere";
     EXPECT_TRUE(featuresOfText(nine).objectBvh);
     EXPECT_EQ(featuresOfText(nine).unrolledObjects, 0u);
     EXPECT_EQ(featuresOfText("sphere cube", 1, true).unrolledObjects, 0u);
-    EXPECT_EQ(featuresOfText("sphere torus").unrolledObjects, 0u);
     EXPECT_EQ(featuresOfText("sphere tetrahedron").unrolledObjects, 0u);
-    EXPECT_EQ(featuresOfText("sphere difference sphere cube").unrolledObjects, 0u);
+    EXPECT_EQ(featuresOfText("torus torus").unrolledObjects, 0u);
+    // Tori beside other shapes, and CSG objects, are kept for after the
+    // walk: unrolled, they only go on that list, their code compiled once.
+    EXPECT_EQ(featuresOfText("sphere torus").unrolledObjects, 2u);
+    EXPECT_EQ(featuresOfText("sphere difference sphere cube").unrolledObjects, 2u);
+    EXPECT_TRUE(keepsTori(featuresOfText("sphere torus")));
+    EXPECT_FALSE(keepsTori(featuresOfText("torus torus")));
+    EXPECT_TRUE(hasDefine(featuresOfText("cube torus"), "VKRAY_KEEP_TORI"));
+    EXPECT_FALSE(hasDefine(featuresOfText("torus"), "VKRAY_KEEP_TORI"));
     const Defines defines = definesFor(featuresOfText("sphere cube"));
     EXPECT_NE(std::find(defines.begin(), defines.end(),
                         std::pair<std::string, std::string>("VKRAY_OBJECTS", "2")),
