@@ -146,7 +146,8 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     else
         out << scene.meshes.size() << " (" << triangles << " triangles)\n";
     out << "object BVH: " << (features.objectBvh ? "yes" : "no") << " (" << bounded
-        << " bounded objects; more than " << gpu::kObjectBvhThreshold << " get one)";
+        << " bounded objects; more than " << gpu::kObjectBvhThreshold
+        << ", or two with a mesh, get one)";
     if (features.unrolledObjects > 0)
         out << "; each object tested in turn, the loop unrolled over the "
             << features.unrolledObjects << ", each test its object's shape's code alone";

@@ -84,9 +84,15 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
         features.shading.fill(true);
     }
     std::size_t bounded = 0;
-    for (const SceneObject& object : scene.objects)
+    bool meshObjects = false;
+    for (const SceneObject& object : scene.objects) {
         bounded += worldBounds(object, scene).finite() ? 1 : 0;
-    features.objectBvh = bounded > kObjectBvhThreshold;
+        meshObjects = meshObjects || gpuKindOf(object.type) == KIND_MESH;
+    }
+    // Mesh objects go through the BVH however few the objects: their walks
+    // are the walk's own there (VKRAY_MESH_INSTANCES), entered only where
+    // the ray comes near, not each one a loop inside every object test.
+    features.objectBvh = bounded > kObjectBvhThreshold || (meshObjects && bounded > 1);
     // On lavapipe a loop over a count read at run time costs several object
     // tests on every ray (BENCHMARKS.md); a constant count is unrolled, each
     // test holding its object's shape's code alone. Tori and CSG objects

@@ -47,7 +47,8 @@ TEST_F(Features, DefaultSceneReport) {
     EXPECT_EQ(field(run.output, "booleans"), "none");
     EXPECT_EQ(field(run.output, "meshes"), "none");
     EXPECT_EQ(field(run.output, "object BVH"),
-              "no (4 bounded objects; more than 8 get one); each object tested in turn, "
+              "no (4 bounded objects; more than 8, or two with a mesh, get one); each object "
+              "tested in turn, "
               "the loop unrolled over the 5, each test its object's shape's code alone");
     EXPECT_EQ(field(run.output, "lights"), "3");
     EXPECT_EQ(field(run.output, "shadows"), "yes (3 lights, 5 objects)");

@@ -4,6 +4,7 @@
 #include "gpu/shader_variant.h"
 #include "shaders/layout.h"
 
+#include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 
 #include <gtest/gtest.h>
@@ -116,6 +117,17 @@ TEST(ShaderVariant, AFewObjectsWithoutMeshesAreTestedInAnUnrolledLoop) {
     EXPECT_EQ(featuresOfText(nine).unrolledObjects, 0u);
     EXPECT_EQ(featuresOfText("sphere cube", 1, true).unrolledObjects, 0u);
     EXPECT_EQ(featuresOfText("sphere tetrahedron").unrolledObjects, 0u);
+    // Two objects with a mesh among them get the BVH (the mesh's walk then
+    // entered only near it); a lone mesh, or the all-features variant of a
+    // scene without one, does not.
+    const auto withMeshes = [](const std::string& sdl) {
+        Scene scene = parseSdl(sdl, "t.sdl", {});
+        loadSceneGeometry(scene, false, nullptr);
+        return featuresOf(scene, RenderSettings{}, false);
+    };
+    EXPECT_TRUE(withMeshes("sphere tetrahedron").objectBvh);
+    EXPECT_FALSE(withMeshes("tetrahedron").objectBvh);
+    EXPECT_FALSE(featuresOfText("sphere cube", 1, true).objectBvh);
     EXPECT_EQ(featuresOfText("torus torus").unrolledObjects, 0u);
     // Tori beside other shapes, and CSG objects, are kept for after the
     // walk: unrolled, they only go on that list, their code compiled once.
