@@ -151,9 +151,12 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     if (features.unrolledObjects > 0)
         out << "; each object tested in turn, the loop unrolled over the "
             << features.unrolledObjects << ", each test its object's shape's code alone";
-    if (features.kinds[gpu::KIND_BOOLEAN] || gpu::keepsTori(features))
-        out << "; " << (features.kinds[gpu::KIND_BOOLEAN] ? "booleans" : "tori")
-            << (features.kinds[gpu::KIND_BOOLEAN] && gpu::keepsTori(features) ? " and tori" : "")
+    const bool booleans = features.kinds[gpu::KIND_BOOLEAN], tori = gpu::keepsTori(features);
+    if (booleans || tori)
+        out << "; "
+            << (booleans && tori ? "booleans and tori"
+                : booleans       ? "booleans"
+                                 : "tori")
             << " tested after the other objects";
     out << "\n";
     out << "lights: " << scene.lights.size() << "\n";
