@@ -59,7 +59,8 @@ BenchOptions parseBenchOptions(const std::vector<std::string>& args, const Bench
     app.add_option("--threads", o.threads, "CPU threads, and LP_NUM_THREADS when unset (default 2)")
         ->check(CLI::Range(1, 1024));
     app.add_option("--tile", o.tile,
-                   "the GPU tracer's tile side (default " + std::to_string(defaults.tile) + ")")
+                   "the GPU tracer's tile side (default: the device's, 256 on a CPU such as "
+                   "lavapipe, 1024 on a GPU)")
         ->check(CLI::Range(8, 16384));
     app.add_option("--shader-dir", o.shaderDirectory, "GLSL folder (default: the build's shaders/)")
         ->type_name("DIR");

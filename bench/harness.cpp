@@ -306,7 +306,7 @@ struct Experiment {
 };
 
 // The tuning table: each configuration against the shipped one (8x8
-// workgroups, 256-pixel tiles left to right), the runs interleaved
+// workgroups, the device's tile side, tiles left to right), the runs interleaved
 // round-robin so that other load on the machine falls on all of them alike.
 // The scene as the benchmark traces it. Primary rays only (default): no
 // lights, so no shadow feelers, and no reflected or refracted rays; every
@@ -343,7 +343,7 @@ void runExperiments(const Options& o, gpu::Context& context) {
             {"--against", with([&](auto& p) { p.shaderDirectory = o.againstDirectory; })}};
     } else {
         experiments = {
-            {"8x8 workgroups, 256 px tiles (shipped)", base},
+            {"8x8 workgroups, the device's tiles (shipped)", base},
             {"16x4 workgroups", with([](auto& p) { p.workgroupX = 16, p.workgroupY = 4; })},
             {"32x2 workgroups", with([](auto& p) { p.workgroupX = 32, p.workgroupY = 2; })},
             {"4x16 workgroups", with([](auto& p) { p.workgroupX = 4, p.workgroupY = 16; })},
@@ -435,7 +435,8 @@ int main(int argc, char** argv) {
         std::printf(
             "%dx%d primary rays, best of %d runs; CPU reference and Embree on %d threads; "
             "GPU tiles %d px, shaders %s\n",
-            o.width, o.height, o.repeat, o.threads, o.tile, shaders.c_str());
+            o.width, o.height, o.repeat, o.threads,
+            o.tile > 0 ? o.tile : gpu::defaultTileSide(device), shaders.c_str());
         std::printf(
             "%s; GPU: the dispatch loop with read-back; CPU reference: the whole render "
             "(less allocating the frame); both shade each hit (ambient, emissive%s) and write "

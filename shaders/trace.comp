@@ -432,7 +432,9 @@ void main() {
         // written when found (the pixel's colour still 0 if the ray pauses)
         // and again with the colour once the ray is done.
         GpuPixel result = aovFound ? aov : loadPixel(firstPixel);
-        if (done) result.color.rgb = ray.sum.rgb / float(endSample - firstSample);
+        // The samples' sum: the host divides it by their count, correctly
+        // rounded (Vulkan lets a device's division be 2.5 ulp off).
+        if (done) result.color.rgb = ray.sum.rgb;
         if (done || aovFound) writePixels(first, firstPixel, tileSize, result);
 #if VKRAY_DEBUG_PIXEL
         if (done) recordDebug(result);

@@ -60,6 +60,10 @@ StressSample decodeStressSample(const GpuStressSample& g, bool doubles) {
 
 }  // namespace
 
+int defaultTileSide(const DeviceInfo& device) {
+    return device.type == "CPU" ? 256 : 1024;
+}
+
 void requirePrecisionSupported(Precision precision, const DeviceInfo& device) {
     if (precision == Precision::Fp64 && !device.shaderFloat64)
         throw Error("--precision fp64: the Vulkan device " + std::to_string(device.index) + " (" +
@@ -166,8 +170,6 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     // they shrink with the samples per pixel, so that no dispatch runs long,
     // and where the device's buffer or workgroup limits need it.
     const int block = settings.block;
-    const int side = std::max(std::min(16, options_.tileSize),
-                              options_.tileSize / int(std::ceil(std::sqrt(double(samples)))));
     // Per pixel at most (a ray per pixel): its pixel, progress and pending rays.
     const bool rayStack = features.has(Shading::Reflection) || features.has(Shading::Refraction);
     const size_t pixelBytes =
@@ -176,6 +178,14 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
         (rayStack ? size_t(pendingRayEntries(scene)) *
                         (features.doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask))
                   : 0);
+    // The device's side unless one was asked for, its buffers at most 256 MiB
+    // a tile in flight (deep pending-ray stacks take hundreds of bytes a pixel).
+    const int tileSize = options_.tileSize > 0
+                             ? options_.tileSize
+                             : std::min(defaultTileSide(context_.device()),
+                                        int(std::sqrt(double(256u << 20) / double(pixelBytes))));
+    const int side =
+        std::max(std::min(16, tileSize), tileSize / int(std::ceil(std::sqrt(double(samples)))));
     const int tile =
         fitTileSide(std::max(block, side / block * block), block, pixelBytes, pipeline.workgroupX,
                     pipeline.workgroupY, deviceLimits(context_.device()));
@@ -198,11 +208,10 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     // outside the tiles it hands this process.
     const GpuPixel& miss = pass.missedPixel();
     const bool missedInFrame = overlap;
-    Frame frame =
-        missedInFrame
-            ? Frame(settings.width, settings.height, {miss.color.x, miss.color.y, miss.color.z},
-                    settings.firstSample == 0 && features.aovs ? miss.normal.w : 0)
-            : Frame(settings.width, settings.height);
+    Frame frame = missedInFrame
+                      ? Frame(settings.width, settings.height, pass.meanColor(miss),
+                              settings.firstSample == 0 && features.aovs ? miss.normal.w : 0)
+                      : Frame(settings.width, settings.height);
     if (stressSamples) stressSamples->assign(frame.pixelCount(), StressSample{});
     const Stopwatch rendering;
     const double renderCpuStart = processCpuSeconds();
@@ -223,7 +232,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
         const bool sample0 = settings.firstSample == 0;  // the id and AOVs were traced
         const auto take = [&](const GpuPixel& p, int x, int y) {
             const size_t i = frame.index(tx + x, ty + y);
-            frame.color[i] = {p.color.x, p.color.y, p.color.z};
+            frame.color[i] = pass.meanColor(p);
             if (!sample0) return;
             std::memcpy(&frame.id[i], &p.color.w, sizeof(std::int32_t));
             if (!features.aovs) return;

@@ -27,11 +27,20 @@
 
 namespace vkray::gpu {
 
+// The tile side that suits a device: 256 on a CPU (lavapipe: two tiles in
+// flight keep both threads busy, and a short dispatch answers `vkray view`
+// soon), 1024 on a GPU, whose thousands of lanes a 256-pixel tile leaves
+// idle (an H200 traced a million-triangle mesh in 5 ms of device time a
+// 1080p frame with 1024-pixel tiles, 18 ms with 256: BENCHMARKS.md).
+int defaultTileSide(const DeviceInfo& device);
+
 struct GpuRenderOptions {
     std::string shaderDirectory;
     bool allFeatures = false;  // compile every shape in, whatever the scene uses
-    int tileSize = 256;        // pixels per tile side (rounded to a multiple of the block)
-    Defines userDefines;       // -D NAME=VALUE, after the variant's own
+    // Pixels per tile side (rounded to a multiple of the block); 0: the
+    // device's own (defaultTileSide()).
+    int tileSize = 0;
+    Defines userDefines;  // -D NAME=VALUE, after the variant's own
     // gpu/precision.h: the mode's defines and host-side scene preparation.
     Precision precision = Precision::Robust;
     // trace.comp's workgroup size; 0: layout.h's WORKGROUP_X x WORKGROUP_Y.
@@ -79,7 +88,8 @@ ShaderSource variantSource(const std::string& shaderDirectory, const ShaderFeatu
 struct Pipeline;
 
 // A tile just traced, its pixels still in the device's buffer: what `vkray
-// view` copies to its window on the device (gpu/presenter.h).
+// view` copies to its window on the device (gpu/presenter.h). Each pixel's
+// colour is the sum of the samples traced (view traces one a pass).
 struct TracedTile {
     TileRect rect;                  // pixels of the image
     std::uint64_t pixelBuffer = 0;  // its VkBuffer: GpuPixel[rect.width * rect.height], row-major

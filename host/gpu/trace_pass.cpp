@@ -112,14 +112,12 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
 }
 
 // The pixel of a ray that meets nothing.
-GpuPixel missOf(const glm::dvec3& background, bool aovs, uint samples, bool averaged) {
+GpuPixel missOf(const glm::dvec3& background, bool aovs, uint samples) {
     // As the shader makes it: each sample's colour is the background's float,
-    // their sum in sample order divided by their count (in a variant of one
-    // pass, the one sample's colour as it is).
+    // their sum in sample order (meanColor() divides it).
     const float br = float(background.x), bg = float(background.y), bb = float(background.z);
     float r = 0, g = 0, bl = 0;
     for (uint k = 0; k < samples; ++k) r += br, g += bg, bl += bb;
-    if (averaged) r /= float(samples), g /= float(samples), bl /= float(samples);
     GpuPixel p{};
     p.color = {r, g, bl, 0};
     const std::int32_t none = -1;
@@ -231,8 +229,7 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
         cover_ = PrimaryCover(coverShapesOf(scene, packed.objectBvh ? &*packed.objectBvh : nullptr),
                               camera, settings);
     packed.objectBvh.reset();
-    missed_ = missOf(scene.background, features.aovs, endSample_ - firstSample_,
-                     !tracesInOnePass(features));
+    missed_ = missOf(scene.background, features.aovs, endSample_ - firstSample_);
     const size_t debugEntries = 4 + scene.objects.size() + scene.lights.size();
     const size_t raysPerSide = size_t((tile + settings.block - 1) / settings.block);
     const size_t tileRays = raysPerSide * raysPerSide;

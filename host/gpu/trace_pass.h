@@ -101,6 +101,13 @@ public:
     }
     // The pixel of a primary ray that meets nothing, as the shader writes it.
     const GpuPixel& missedPixel() const { return missed_; }
+    // A pixel's colour: the shader writes the sum of its samples, divided
+    // here so that the mean is correctly rounded on every device (Vulkan
+    // lets a device's division be 2.5 ulp off).
+    glm::vec3 meanColor(const GpuPixel& p) const {
+        const float n = float(endSample_ - firstSample_);
+        return {p.color.x / n, p.color.y / n, p.color.z / n};
+    }
 
     const GpuPixel* pixels(int slot = 0) const {
         return static_cast<const GpuPixel*>(buffer(BINDING_PIXELS, slot).data());

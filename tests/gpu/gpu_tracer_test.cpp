@@ -124,6 +124,25 @@ TEST(GpuTracer, BlockFillsEachBlockWithOneRay) {
         }
 }
 
+TEST(GpuTracer, TheDefaultTileSuitsTheDevice) {
+    gpu::DeviceInfo device;
+    device.type = "CPU";
+    EXPECT_EQ(gpu::defaultTileSide(device), 256);
+    device.type = "discrete GPU";
+    EXPECT_EQ(gpu::defaultTileSide(device), 1024);
+    device.type = "integrated GPU";
+    EXPECT_EQ(gpu::defaultTileSide(device), 1024);
+    // Unset, the tile side is the device's: lavapipe's 256 pixels give a
+    // 600x300 image 3x2 tiles.
+    Scene scene = parseSdl("sphere", "tiles.sdl", {});
+    const RenderSettings settings{600, 300, 1};
+    gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir});
+    gpu::GpuRenderStats stats;
+    tracer.render(scene, makeCameraBasis(Camera{}, 600, 300), settings, &stats);
+    const uint expected = test::gpuContext().device().type == "CPU" ? 6u : 1u;
+    EXPECT_EQ(stats.tiles, expected);
+}
+
 TEST(GpuTracer, TilesStitchIntoTheSameImage) {
     // Small tiles must give exactly the bytes of one big tile.
     Scene scene = parseSdl("push translate 0.3 0 0 sphere pop cube", "tiles.sdl", {});
