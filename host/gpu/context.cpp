@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 
 namespace vkray::gpu {
 
@@ -327,9 +328,22 @@ HostBuffer::HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUs
     auto requirements = buffer_.getMemoryRequirements();
     auto properties = context.physicalDevice.getMemoryProperties();
     const bool local = memory == BufferMemory::DeviceLocal;
-    std::uint32_t type = context.findMemoryType(requirements.memoryTypeBits,
-                                                local ? vk::MemoryPropertyFlagBits::eDeviceLocal
-                                                      : vk::MemoryPropertyFlagBits::eHostVisible);
+    const auto cachedType = [&]() -> std::optional<std::uint32_t> {
+        try {
+            return context.findMemoryType(
+                requirements.memoryTypeBits,
+                vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCached);
+        } catch (const Error&) {
+            return std::nullopt;
+        }
+    };
+    const std::optional<std::uint32_t> cached =
+        memory == BufferMemory::HostReadBack ? cachedType() : std::nullopt;
+    const std::uint32_t type =
+        cached ? *cached
+               : context.findMemoryType(requirements.memoryTypeBits,
+                                        local ? vk::MemoryPropertyFlagBits::eDeviceLocal
+                                              : vk::MemoryPropertyFlagBits::eHostVisible);
     coherent_ = bool(properties.memoryTypes[type].propertyFlags &
                      vk::MemoryPropertyFlagBits::eHostCoherent);
     memory_ = vk::raii::DeviceMemory(context.device, {requirements.size, type});

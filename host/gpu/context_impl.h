@@ -33,9 +33,12 @@ struct Context::Impl {
 [[noreturn]] void explainVulkanFailure(const vk::SystemError& failure, const DeviceInfo& device);
 
 // Where a buffer's memory lies: host-visible, mapped for the buffer's whole
-// life; or device-local, never mapped, filled by a copy from a host-visible
-// one (a discrete GPU then reads it from its own memory, not over the bus).
-enum class BufferMemory { HostVisible, DeviceLocal };
+// life; host-visible and cached where the device has such memory, for what
+// the host reads back (a discrete GPU's uncached host-visible memory reads
+// at a fraction of the speed); or device-local, never mapped, filled by a
+// copy from a host-visible one (a discrete GPU then reads it from its own
+// memory, not over the bus).
+enum class BufferMemory { HostVisible, HostReadBack, DeviceLocal };
 
 // A buffer and its memory. Member order fixes destruction order: the buffer
 // goes before its memory.

@@ -40,13 +40,16 @@ BindingUse useOf(BindingKind kind) {
 // What only the shader reads or writes lies in device-local memory: the
 // scene's arrays, fp64's camera, each ray's progress and pending rays. What
 // the host writes or reads during a render (the frame's parameters, the
-// pixels, the status, the debug and stress records) stays host-visible.
+// pixels, the status, the debug and stress records) stays host-visible,
+// cached where the host reads it back.
 BufferMemory memoryOf(uint binding, BindingKind kind) {
     const bool texels = kind == BindingKind::Texels || kind == BindingKind::UintTexels;
-    return (texels && binding != BINDING_PIXELS && binding != BINDING_RAY_GROUPS) ||
-                   binding == BINDING_DOUBLE_CAMERA
-               ? BufferMemory::DeviceLocal
-               : BufferMemory::HostVisible;
+    if ((texels && binding != BINDING_PIXELS && binding != BINDING_RAY_GROUPS) ||
+        binding == BINDING_DOUBLE_CAMERA)
+        return BufferMemory::DeviceLocal;
+    const bool readBack = binding == BINDING_PIXELS || binding == BINDING_STATUS ||
+                          binding == BINDING_DEBUG || binding == BINDING_STRESS_OUTPUT;
+    return readBack ? BufferMemory::HostReadBack : BufferMemory::HostVisible;
 }
 
 // Every buffer TracePass allocates for this variant, before it allocates any.
@@ -154,8 +157,8 @@ void TracePass::add(uint binding, const std::vector<T>& items, int slot) {
     // `vkray view`'s presenter reads the tile's pixels as a storage buffer.
     if (binding == BINDING_PIXELS) usage |= vk::BufferUsageFlagBits::eStorageBuffer;
     Buffers& into = slot < 0 ? buffers_ : slots_[size_t(slot)].buffers;
-    if (memoryOf(binding, kind) == BufferMemory::HostVisible) {
-        auto buffer = std::make_unique<HostBuffer>(c_, bytes, usage);
+    if (const BufferMemory memory = memoryOf(binding, kind); memory != BufferMemory::DeviceLocal) {
+        auto buffer = std::make_unique<HostBuffer>(c_, bytes, usage, memory);
         if (!items.empty()) buffer->upload(items.data(), sizeof(T) * items.size());
         into.emplace(binding, std::move(buffer));
         return;
