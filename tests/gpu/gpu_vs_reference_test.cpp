@@ -42,8 +42,8 @@ constexpr double kMaxDisagreeingFraction = 0.005;  // of all the image's pixels
 // Depth where both hit the same object, float against double: 1e-4 of it,
 // and more at grazing incidence, where t = distance / cos(incidence) moves by
 // about u / |cos| of itself for a float direction rounded by u (16 u: a few
-// roundings of the direction, and a device's normalize may be 2 ulp off, as
-// NVIDIA's is; lavapipe's stays within the 1e-4).
+// roundings of the direction, whose normalize Vulkan lets a device compute
+// 2 ulp off; lavapipe stays within the 1e-4, an NVIDIA H200 did not).
 void expectDepthsAgree(const Frame& gpu, const Frame& cpu, const CameraBasis& camera,
                        const RenderSettings& settings) {
     for (int y = 0; y < gpu.height; ++y)
