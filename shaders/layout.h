@@ -59,14 +59,15 @@ VKRAY_CONST(uint, BINDING_DOUBLE_CAMERA, 13u);   // fp64 variant: buffer GpuDoub
 VKRAY_CONST(uint, BINDING_DOUBLE_OBJECTS, 14u);  // fp64 variant: texels: GpuDoubleObject[]
 VKRAY_CONST(uint, BINDING_PROGRESS, 15u);  // texels: GpuRayProgress[]: each ray's state between dispatches
 VKRAY_CONST(uint, BINDING_STATUS, 16u);    // buffer GpuDispatchStatus: what one dispatch left undone
-VKRAY_CONST(uint, BINDING_RAY_STACK, 17u); // reflection/refraction variants: texels: GpuRayTask[] (or double)
+VKRAY_CONST(uint, BINDING_RAY_STACK, 17u); // reflection/refraction variants: buffer of uvec4: GpuRayTask[] (or double)
 VKRAY_CONST(uint, BINDING_MATERIALS, 18u); // texels: GpuMaterial[] (read once a hit)
 VKRAY_CONST(uint, BINDING_STRESS_OUTPUT, 19u);  // stress-output variant: buffer GpuStressSample[] (one tile)
 VKRAY_CONST(uint, BINDING_RAY_GROUPS, 20u);  // r32ui texels: the workgroups a dispatch traces (one tile)
 VKRAY_CONST(uint, BINDING_TILE, 21u);        // buffer TileParams: the dispatch's tile and work
 
-// The texels (uvec4) of each structure read through a texel buffer
-// (host/gpu/layout_check.cpp checks each against its size).
+// The texels (uvec4) of each structure read through a texel buffer, or
+// stored as uvec4s (the pending rays; host/gpu/layout_check.cpp checks each
+// against its size).
 VKRAY_CONST(uint, OBJECT_GEOMETRY_TEXELS, 4u);
 VKRAY_CONST(uint, MATERIAL_TEXELS, 6u);
 VKRAY_CONST(uint, LIGHT_TEXELS, 2u);

@@ -197,34 +197,39 @@ struct RayTask {
 // llvmpipe each word a shader stores is a loop over the 8 lanes, so a chain
 // of rays (reflection or refraction alone) stores none, and a tree one ray a
 // branch. maxRecursionDepth + 1 entries (frame.sampling.w) hold the deepest
-// tree. The stack lives in a texel buffer, frame.sampling.w entries per
+// tree. The stack lives in a storage buffer, frame.sampling.w entries per
 // invocation, so that it outlasts a dispatch: a ray that pauses puts its next
-// ray there too. Without secondary rays the next ray is a sample's primary
+// ray there too. A storage buffer, not a texel buffer as the scene's arrays:
+// llvmpipe stores a uvec4 of a storage buffer in one loop over the lanes but
+// an image texel a word a loop (a push: 4 loops, not 16), and its loads skip
+// the lanes that do not pop, where a texel load reads all eight every turn. Without secondary rays the next ray is a sample's primary
 // ray, made again when a dispatch resumes.
 #define VKRAY_RAY_STACK (VKRAY_REFLECTION || VKRAY_REFRACTION)
 RayTask nextRay;
 bool haveNext;
 
 #if VKRAY_RAY_STACK
-// Texels, as the pixels (trace.comp): GpuRayTask, or GpuDoubleRayTask in fp64.
-layout(set = 0, binding = BINDING_RAY_STACK, rgba32ui) uniform uimageBuffer pendingRayTexels;
+// GpuRayTask, or GpuDoubleRayTask in fp64, as uvec4s.
+layout(std430, set = 0, binding = BINDING_RAY_STACK) buffer PendingRays { uvec4 pendingRays[]; };
+void storePending(int at, uvec4 part) { pendingRays[at] = part; }
+uvec4 loadPending(int at) { return pendingRays[at]; }
 uint rayStackBase;  // this invocation's first entry
 
 #if VKRAY_PRECISION_FP64
 const uint PENDING_RAY_TEXELS = DOUBLE_RAY_TASK_TEXELS;
 void storeReal4(int at, dvec4 v) {
-    imageStore(pendingRayTexels, at, uvec4(unpackDouble2x32(v.x), unpackDouble2x32(v.y)));
-    imageStore(pendingRayTexels, at + 1, uvec4(unpackDouble2x32(v.z), unpackDouble2x32(v.w)));
+    storePending(at, uvec4(unpackDouble2x32(v.x), unpackDouble2x32(v.y)));
+    storePending(at + 1, uvec4(unpackDouble2x32(v.z), unpackDouble2x32(v.w)));
 }
 dvec4 loadReal4(int at) {
-    uvec4 xy = imageLoad(pendingRayTexels, at), zw = imageLoad(pendingRayTexels, at + 1);
+    uvec4 xy = loadPending(at), zw = loadPending(at + 1);
     return dvec4(packDouble2x32(xy.xy), packDouble2x32(xy.zw), packDouble2x32(zw.xy),
                  packDouble2x32(zw.zw));
 }
 #else
 const uint PENDING_RAY_TEXELS = RAY_TASK_TEXELS;
-void storeReal4(int at, vec4 v) { imageStore(pendingRayTexels, at, floatBitsToUint(v)); }
-vec4 loadReal4(int at) { return texelAsVec4(imageLoad(pendingRayTexels, at)); }
+void storeReal4(int at, vec4 v) { storePending(at, floatBitsToUint(v)); }
+vec4 loadReal4(int at) { return texelAsVec4(loadPending(at)); }
 #endif
 const int REAL4_TEXELS = int(PENDING_RAY_TEXELS - 2u) / 2;  // 1, or 2 in fp64
 
@@ -232,15 +237,15 @@ void pushRay(inout uint top, RayTask task) {
     int at = int((rayStackBase + top++) * PENDING_RAY_TEXELS);
     storeReal4(at, rvec4(task.origin, real(task.level)));
     storeReal4(at + REAL4_TEXELS, rvec4(task.direction, real(task.medium.depth)));
-    imageStore(pendingRayTexels, at + 2 * REAL4_TEXELS, floatBitsToUint(vec4(task.weight, 0.0)));
-    imageStore(pendingRayTexels, at + 2 * REAL4_TEXELS + 1, floatBitsToUint(task.medium.speeds));
+    storePending(at + 2 * REAL4_TEXELS, floatBitsToUint(vec4(task.weight, 0.0)));
+    storePending(at + 2 * REAL4_TEXELS + 1, floatBitsToUint(task.medium.speeds));
 }
 
 RayTask popRay(inout uint top) {
     int at = int((rayStackBase + --top) * PENDING_RAY_TEXELS);
     rvec4 origin = loadReal4(at), direction = loadReal4(at + REAL4_TEXELS);
-    vec4 weight = texelAsVec4(imageLoad(pendingRayTexels, at + 2 * REAL4_TEXELS));
-    vec4 speeds = texelAsVec4(imageLoad(pendingRayTexels, at + 2 * REAL4_TEXELS + 1));
+    vec4 weight = texelAsVec4(loadPending(at + 2 * REAL4_TEXELS));
+    vec4 speeds = texelAsVec4(loadPending(at + 2 * REAL4_TEXELS + 1));
     return RayTask(origin.xyz, direction.xyz, weight.rgb, uint(origin.w),
                    Medium(speeds, uint(direction.w)));
 }

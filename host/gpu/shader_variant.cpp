@@ -193,7 +193,7 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
     if (!tracesInOnePass(features)) bindings.push_back({BINDING_PROGRESS, "ray progress", Texels});
     bindings.push_back({BINDING_STATUS, "dispatch status", Storage});
     if (features.has(Shading::Reflection) || features.has(Shading::Refraction))
-        bindings.push_back({BINDING_RAY_STACK, "pending rays", Texels});
+        bindings.push_back({BINDING_RAY_STACK, "pending rays", Storage});
     if (features.debugPixel) bindings.push_back({BINDING_DEBUG, "debug record", Storage});
     if (features.objectBvh) {
         bindings.push_back({BINDING_OBJECT_NODES, "object BVH nodes", Texels});

@@ -117,7 +117,7 @@ std::string describe(const ShaderFeatures& features);
 // How the shader reads a binding (shaders/layout.h, "Descriptor bindings").
 enum class BindingKind {
     Storage,     // a storage buffer (what the shader writes; the frame's, the tile's
-                 // and fp64's camera parameters)
+                 // and fp64's camera parameters; the pending rays)
     Texels,      // a read-only storage texel buffer, rgba32ui (uimageBuffer)
     UintTexels,  // the same, r32ui
 };

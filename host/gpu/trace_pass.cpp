@@ -45,7 +45,7 @@ BindingUse useOf(BindingKind kind) {
 BufferMemory memoryOf(uint binding, BindingKind kind) {
     const bool texels = kind == BindingKind::Texels || kind == BindingKind::UintTexels;
     if ((texels && binding != BINDING_PIXELS && binding != BINDING_RAY_GROUPS) ||
-        binding == BINDING_DOUBLE_CAMERA)
+        binding == BINDING_DOUBLE_CAMERA || binding == BINDING_RAY_STACK)
         return BufferMemory::DeviceLocal;
     const bool readBack = binding == BINDING_PIXELS || binding == BINDING_STATUS ||
                           binding == BINDING_DEBUG || binding == BINDING_STRESS_OUTPUT;
@@ -83,7 +83,7 @@ std::vector<BufferNeed> bufferNeeds(const GpuScene& packed, const ShaderFeatures
         if (pendingRays > 0)
             needs.push_back({"pending rays", pendingRays,
                              doubles ? sizeof(GpuDoubleRayTask) : sizeof(GpuRayTask),
-                             "Use a smaller maxRecursionDepth", sizeof(uvec4)});
+                             "Use a smaller maxRecursionDepth"});
         if (features.debugPixel)
             needs.push_back({"debug entries", debugEntries, sizeof(GpuDebugEntry), fewerObjects});
         if (features.stressOutput)

@@ -130,7 +130,7 @@ TEST_F(Features, VariantAllCompilesEveryFeatureAndBindsTheirBuffers) {
     // pixmap arrays are bound (empty: one element, as Vulkan wants).
     const std::vector<std::string> lines = buffers(run.output);
     ASSERT_EQ(lines.size(), 16u) << run.output;
-    EXPECT_EQ(lines[9], "17 pending rays texels one tile of 4-entry stacks of 64-byte rays");
+    EXPECT_EQ(lines[9], "17 pending rays storage one tile of 4-entry stacks of 64-byte rays");
     EXPECT_EQ(lines[12],
               "9 triangles texels empty (one 96-byte element: Vulkan has no empty buffers)");
     EXPECT_EQ(lines[13],
