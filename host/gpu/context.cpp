@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <optional>
 
 namespace vkray::gpu {
 
@@ -198,12 +197,18 @@ std::string DeviceInfo::apiVersionString() const {
            std::to_string(VK_API_VERSION_PATCH(apiVersion));
 }
 
-std::uint32_t Context::Impl::findMemoryType(std::uint32_t typeBits,
-                                            vk::MemoryPropertyFlags flags) const {
+std::optional<std::uint32_t> Context::Impl::memoryTypeWith(std::uint32_t typeBits,
+                                                           vk::MemoryPropertyFlags flags) const {
     auto memory = physicalDevice.getMemoryProperties();
     for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i)
         if ((typeBits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & flags) == flags)
             return i;
+    return std::nullopt;
+}
+
+std::uint32_t Context::Impl::findMemoryType(std::uint32_t typeBits,
+                                            vk::MemoryPropertyFlags flags) const {
+    if (const std::optional<std::uint32_t> type = memoryTypeWith(typeBits, flags)) return *type;
     throw Error(
         std::string("the Vulkan device has no ") +
         (flags & vk::MemoryPropertyFlagBits::eHostVisible ? "host-visible" : "device-local") +
@@ -328,17 +333,12 @@ HostBuffer::HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUs
     auto requirements = buffer_.getMemoryRequirements();
     auto properties = context.physicalDevice.getMemoryProperties();
     const bool local = memory == BufferMemory::DeviceLocal;
-    const auto cachedType = [&]() -> std::optional<std::uint32_t> {
-        try {
-            return context.findMemoryType(
-                requirements.memoryTypeBits,
-                vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCached);
-        } catch (const Error&) {
-            return std::nullopt;
-        }
-    };
     const std::optional<std::uint32_t> cached =
-        memory == BufferMemory::HostReadBack ? cachedType() : std::nullopt;
+        memory == BufferMemory::HostReadBack
+            ? context.memoryTypeWith(requirements.memoryTypeBits,
+                                     vk::MemoryPropertyFlagBits::eHostVisible |
+                                         vk::MemoryPropertyFlagBits::eHostCached)
+            : std::nullopt;
     const std::uint32_t type =
         cached ? *cached
                : context.findMemoryType(requirements.memoryTypeBits,

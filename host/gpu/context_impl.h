@@ -25,6 +25,9 @@ struct Context::Impl {
 
     // Finds a memory type with all `flags` among those `typeBits` allows.
     std::uint32_t findMemoryType(std::uint32_t typeBits, vk::MemoryPropertyFlags flags) const;
+    // The first such memory type, if the device has one.
+    std::optional<std::uint32_t> memoryTypeWith(std::uint32_t typeBits,
+                                                vk::MemoryPropertyFlags flags) const;
 };
 
 // Vulkan's failures that can strike in the middle of a render (device lost,
