@@ -393,14 +393,15 @@ TEST(Bvh, ExtremeCoordinatesBuild) {
     checkInvariants(buildBvh(huge), huge, 4);
 }
 
-TEST(Bvh, BuildsOneHundredThousandBoxesWellUnderASecond) {
+// The build's time is printed, not asserted (the benchmark's to judge).
+TEST(Bvh, BuildsOneHundredThousandBoxesIntoAShallowTree) {
     const std::vector<Aabb> boxes = randomBoxes(100'000, 11, 1000);
     const double start = threadSeconds();
     const Bvh bvh = buildBvh(boxes);
     const double seconds = threadSeconds() - start;
     std::printf("[ timing   ] BVH over 100000 boxes: %.3f s (CPU), %zu nodes, depth %d\n", seconds,
                 bvh.nodes.size(), bvh.depth);
-    EXPECT_LT(seconds, 1.0);
+    EXPECT_LE(bvh.depth, 30);  // about log2(1e5) = 17 levels of halves
     checkInvariants(bvh, boxes, 4);
 }
 

@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -98,20 +97,16 @@ TEST(Mesh3vn, CorpusArchHasOneLineFaces) {
     EXPECT_EQ(mesh.faces.back().line, 369);
 }
 
-TEST(Mesh3vn, CorpusPillarLoadsQuickly) {
+TEST(Mesh3vn, CorpusPillarLoads) {
     VKRAY_NEED_CORPUS();
     // Header "1140 1140 1110", all quads; z reaches +-7.956175 (line 296 and
-    // its mirror). 104 KB: a 470 KB mesh takes under 5 times as long.
-    const auto start = std::chrono::steady_clock::now();
+    // its mirror).
     const PolygonMesh mesh = load3vn(corpus("pillar.3vn"));
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(mesh.vertices.size(), 1140u);
     EXPECT_EQ(mesh.normals.size(), 1140u);
     EXPECT_EQ(mesh.faces.size(), 1110u);
     EXPECT_EQ(triangleCount(mesh), 2220u);
     expectBounds(mesh, {-8, 0, -7.956175}, {8, 60, 7.956175});
-    EXPECT_LT(seconds, 0.1) << "(sanitizer builds included)";
 }
 
 TEST(Mesh3vn, FanTrianglesKeepEachCornersNormal) {
@@ -184,15 +179,12 @@ TEST(Mesh3vnErrors, CountsAboveTheLimitsAreRefusedBeforeReading) {
 }
 
 TEST(Mesh3vnErrors, HeaderPromisingMoreThanTheFileHoldsFailsFast) {
-    // A 10-byte file that claims 19 million vertices is refused at once,
-    // before anything is allocated.
-    const auto start = std::chrono::steady_clock::now();
+    // A 10-byte file that claims 19 million vertices is refused from its
+    // header and size, before anything is allocated.
     EXPECT_EQ(meshError("19000000 0 0 1"),
               "m.3vn:1:1: error: the header promises 19000000 vertices, 0 normals and 0 faces, "
               "which need at least 114000000 bytes; the file has only 2 after the header "
               "(truncated, or not a 3VN file)");
-    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-              0.05);
 }
 
 TEST(Mesh3vnErrors, MalformedNaNInfiniteAndOverflowingCoordinates) {
