@@ -202,8 +202,9 @@ struct RayTask {
 // ray there too. A storage buffer, not a texel buffer as the scene's arrays:
 // llvmpipe stores a uvec4 of a storage buffer in one loop over the lanes but
 // an image texel a word a loop (a push: 4 loops, not 16), and its loads skip
-// the lanes that do not pop, where a texel load reads all eight every turn. Without secondary rays the next ray is a sample's primary
-// ray, made again when a dispatch resumes.
+// the lanes that do not pop, where a texel load reads all eight every turn.
+// Without secondary rays the next ray is a sample's primary ray, made again
+// when a dispatch resumes.
 #define VKRAY_RAY_STACK (VKRAY_REFLECTION || VKRAY_REFRACTION)
 RayTask nextRay;
 bool haveNext;
@@ -211,25 +212,23 @@ bool haveNext;
 #if VKRAY_RAY_STACK
 // GpuRayTask, or GpuDoubleRayTask in fp64, as uvec4s.
 layout(std430, set = 0, binding = BINDING_RAY_STACK) buffer PendingRays { uvec4 pendingRays[]; };
-void storePending(int at, uvec4 part) { pendingRays[at] = part; }
-uvec4 loadPending(int at) { return pendingRays[at]; }
 uint rayStackBase;  // this invocation's first entry
 
 #if VKRAY_PRECISION_FP64
 const uint PENDING_RAY_TEXELS = DOUBLE_RAY_TASK_TEXELS;
 void storeReal4(int at, dvec4 v) {
-    storePending(at, uvec4(unpackDouble2x32(v.x), unpackDouble2x32(v.y)));
-    storePending(at + 1, uvec4(unpackDouble2x32(v.z), unpackDouble2x32(v.w)));
+    pendingRays[at] = uvec4(unpackDouble2x32(v.x), unpackDouble2x32(v.y));
+    pendingRays[at + 1] = uvec4(unpackDouble2x32(v.z), unpackDouble2x32(v.w));
 }
 dvec4 loadReal4(int at) {
-    uvec4 xy = loadPending(at), zw = loadPending(at + 1);
+    uvec4 xy = pendingRays[at], zw = pendingRays[at + 1];
     return dvec4(packDouble2x32(xy.xy), packDouble2x32(xy.zw), packDouble2x32(zw.xy),
                  packDouble2x32(zw.zw));
 }
 #else
 const uint PENDING_RAY_TEXELS = RAY_TASK_TEXELS;
-void storeReal4(int at, vec4 v) { storePending(at, floatBitsToUint(v)); }
-vec4 loadReal4(int at) { return texelAsVec4(loadPending(at)); }
+void storeReal4(int at, vec4 v) { pendingRays[at] = floatBitsToUint(v); }
+vec4 loadReal4(int at) { return texelAsVec4(pendingRays[at]); }
 #endif
 const int REAL4_TEXELS = int(PENDING_RAY_TEXELS - 2u) / 2;  // 1, or 2 in fp64
 
@@ -237,15 +236,15 @@ void pushRay(inout uint top, RayTask task) {
     int at = int((rayStackBase + top++) * PENDING_RAY_TEXELS);
     storeReal4(at, rvec4(task.origin, real(task.level)));
     storeReal4(at + REAL4_TEXELS, rvec4(task.direction, real(task.medium.depth)));
-    storePending(at + 2 * REAL4_TEXELS, floatBitsToUint(vec4(task.weight, 0.0)));
-    storePending(at + 2 * REAL4_TEXELS + 1, floatBitsToUint(task.medium.speeds));
+    pendingRays[at + 2 * REAL4_TEXELS] = floatBitsToUint(vec4(task.weight, 0.0));
+    pendingRays[at + 2 * REAL4_TEXELS + 1] = floatBitsToUint(task.medium.speeds);
 }
 
 RayTask popRay(inout uint top) {
     int at = int((rayStackBase + --top) * PENDING_RAY_TEXELS);
     rvec4 origin = loadReal4(at), direction = loadReal4(at + REAL4_TEXELS);
-    vec4 weight = texelAsVec4(loadPending(at + 2 * REAL4_TEXELS));
-    vec4 speeds = texelAsVec4(loadPending(at + 2 * REAL4_TEXELS + 1));
+    vec4 weight = texelAsVec4(pendingRays[at + 2 * REAL4_TEXELS]);
+    vec4 speeds = texelAsVec4(pendingRays[at + 2 * REAL4_TEXELS + 1]);
     return RayTask(origin.xyz, direction.xyz, weight.rgb, uint(origin.w),
                    Medium(speeds, uint(direction.w)));
 }
