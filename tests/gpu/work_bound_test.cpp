@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -64,6 +65,17 @@ bool sameBytes(const Frame& a, const Frame& b) {
 
 bool onLlvmpipe() {
     return test::gpuContext().device().name.find("llvmpipe") != std::string::npos;
+}
+
+// Whether the device is an llvmpipe known to have the silent loop limit:
+// Mesa 22 and older (bookworm ships 22.3). Mesa 25.0 (bookworm-backports)
+// ran these tests' loops to their end; for a version between, the tests
+// hold it to the image alone.
+bool llvmpipeWithLoopLimit() {
+    if (!onLlvmpipe()) return false;
+    const std::string& info = test::gpuContext().device().driverInfo;
+    const size_t mesa = info.find("Mesa ");
+    return mesa != std::string::npos && std::atoi(info.c_str() + mesa + 5) <= 22;
 }
 
 TEST(WorkBound, FourThousandSamplesAgreeWithTheReference) {
@@ -127,15 +139,16 @@ TEST(WorkBound, ADispatchCutShortIsDetectedAndTracedAgain) {
     if (!onLlvmpipe()) GTEST_SKIP() << "only llvmpipe has the loop limit this test provokes";
     // A budget far beyond the limit: the first dispatch runs into it, the
     // canary says so, and the tile is traced again with less work a dispatch.
+    // A driver without the limit traces it in one go; the bytes are the same.
     const Scene scene = sceneOf(sphereGrid());
     const RenderSettings settings{8, 6, 1, 4096, 3};
     const Rendered bounded = renderWithBudget(scene, settings, 0);
     const Rendered unbounded = renderWithBudget(scene, settings, 1 << 30);
-    EXPECT_GE(unbounded.stats.tilesRedone, 1u);
+    if (llvmpipeWithLoopLimit()) EXPECT_GE(unbounded.stats.tilesRedone, 1u);
     EXPECT_TRUE(sameBytes(bounded.frame, unbounded.frame));
 }
 
-TEST(WorkBound, OneRayBeyondTheLoopLimitIsRefused) {
+TEST(WorkBound, OneRayBeyondTheLoopLimitIsRefusedWhereTheDriverHasIt) {
     if (!onLlvmpipe()) GTEST_SKIP() << "only llvmpipe has a loop limit";
     // 70 000 lights on one hit: one ray's light loop alone passes 65 535
     // turns, and a ray does not pause between its lights.
@@ -143,6 +156,19 @@ TEST(WorkBound, OneRayBeyondTheLoopLimitIsRefused) {
     for (int i = 0; i < 70000; ++i) sdl += "light 0 0 10 1e-5 1e-5 1e-5\n";
     sdl += "sphere\n";
     const Scene scene = sceneOf(sdl);
+    if (!llvmpipeWithLoopLimit()) {
+        // Without the limit the ray's loop runs to its end: the image is
+        // right. The GPU sums 70 000 light terms in float: at most 7e4 u
+        // (4.2e-3) of a sum under 1 away from the reference's double sum.
+        const RenderSettings settings{8, 8};
+        const Rendered gpu = renderWithBudget(scene, settings, 0);
+        const Frame cpu = reference::render(
+            scene, makeCameraBasis(*scene.camera, settings.width, settings.height), settings);
+        const test::FrameDifference d = test::frameDifference(gpu.frame, cpu, 5e-3);
+        EXPECT_EQ(d.ids, 0u);
+        EXPECT_EQ(d.over, 0u);
+        return;
+    }
     const std::string message = errorOf([&] { renderWithBudget(scene, {8, 8}, 0); });
     EXPECT_NE(message.find("within the driver's loop limit"), std::string::npos) << message;
     EXPECT_NE(message.find("--cpu"), std::string::npos) << message;
