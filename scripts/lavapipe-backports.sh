@@ -25,28 +25,21 @@ for tool in apt-get dpkg; do
     exit 1
   fi
 done
-codename=$(. /etc/os-release && echo "${VERSION_CODENAME:-}")
-if [ "$codename" != "bookworm" ]; then
-  echo "lavapipe-backports: this is ${codename:-an unknown release}, not Debian bookworm;" \
-       "install your distribution's newest mesa-vulkan-drivers instead" >&2
-  exit 1
-fi
 mkdir -p "$1"
 out=$(cd "$1" && pwd)
 
-# The mirror that serves bookworm to this machine, with its backports suite.
+# The mirror that serves bookworm to this machine, with its backports suite
+# (signed by the Debian archive keys apt already trusts).
 mirror=$(apt-get indextargets --format '$(REPO_URI) $(RELEASE)' 2>/dev/null |
          awk '$2 == "bookworm" { print $1; exit }')
 if [ -z "$mirror" ]; then
-  echo "lavapipe-backports: apt has no source for bookworm to take backports from" >&2
+  echo "lavapipe-backports: apt has no source for Debian bookworm; on another release," \
+       "install its newest mesa-vulkan-drivers instead" >&2
   exit 1
 fi
 apt_dir=$(mktemp -d)
 trap 'rm -rf "$apt_dir"' EXIT
-keyring=/usr/share/keyrings/debian-archive-keyring.gpg
-signed=""
-[ -r "$keyring" ] && signed="[signed-by=$keyring] "
-echo "deb ${signed}${mirror} bookworm-backports main" > "$apt_dir/sources.list"
+echo "deb ${mirror} bookworm-backports main" > "$apt_dir/sources.list"
 mkdir -p "$apt_dir/lists/partial" "$apt_dir/debs"
 apt_options=(-o "Dir::Etc::sourcelist=$apt_dir/sources.list" -o "Dir::Etc::sourceparts=-"
              -o "Dir::State::Lists=$apt_dir/lists" -o "APT::Get::List-Cleanup=0")
@@ -65,18 +58,19 @@ fi
 }
 rm -rf "$out/root"
 for deb in "$apt_dir"/debs/*.deb; do dpkg -x "$deb" "$out/root"; done
-lib="$out/root/usr/lib/$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || echo x86_64-linux-gnu)"
-if [ ! -f "$lib/libvulkan_lvp.so" ]; then
-  echo "lavapipe-backports: the package held no libvulkan_lvp.so under $lib" >&2
+driver=$(find "$out/root" -name libvulkan_lvp.so | head -n 1)
+if [ -z "$driver" ]; then
+  echo "lavapipe-backports: the package held no libvulkan_lvp.so" >&2
   exit 1
 fi
-api=$(sed -n 's/.*"api_version": *"\([^"]*\)".*/\1/p' "$out"/root/usr/share/vulkan/icd.d/lvp_icd*.json |
+lib=$(dirname "$driver")
+api=$(find "$out/root" -name 'lvp_icd*.json' -exec sed -n 's/.*"api_version": *"\([^"]*\)".*/\1/p' {} + |
       head -n 1)
 cat > "$out/lvp_icd.json" <<EOF
 {
     "file_format_version": "1.0.0",
     "ICD": {
-        "library_path": "$lib/libvulkan_lvp.so",
+        "library_path": "$driver",
         "api_version": "${api:-1.3.0}"
     }
 }
