@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,8 +16,19 @@ struct ShaderSource {
     std::vector<std::pair<std::string, std::string>> defines;  // NAME, VALUE
 };
 
-// Compiles a compute shader for Vulkan 1.2 / SPIR-V 1.5. Throws Error with
-// glslang's log (each message names the shader file and line) on failure.
+// The shader folder's sources (.comp, .glsl, .h, below it too) read once,
+// by path relative to the folder. A compile and its SPIR-V cache key take
+// the same bytes, however the files change in between (an editor saving
+// while `vkray view` renders).
+using ShaderFiles = std::map<std::string, std::string>;
+ShaderFiles readShaderFiles(const std::string& directory);
+
+// Compiles a compute shader for Vulkan 1.2 / SPIR-V 1.5 from `files` (the
+// main file and every include among them). Throws Error with glslang's log
+// (each message names the shader file and line) on failure.
+std::vector<std::uint32_t> compileComputeShader(const ShaderSource& source,
+                                                const ShaderFiles& files);
+// The same, from the folder as it is now.
 std::vector<std::uint32_t> compileComputeShader(const ShaderSource& source);
 
 // glslang's version, part of the SPIR-V cache key.

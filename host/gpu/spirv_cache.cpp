@@ -16,6 +16,11 @@ namespace {
 
 constexpr std::uint32_t kSpirvMagic = 0x07230203;
 
+// Part of every key. Raised when entries already written cannot be trusted:
+// 2 since the key and the compile read the same bytes (before, a file saved
+// between the two could leave its SPIR-V under the old bytes' key).
+constexpr const char* kCacheFormat = "vkray-spirv-cache 2";
+
 struct Fnv1a {
     std::uint64_t hash = 0xcbf29ce484222325ull;
     void add(const std::string& bytes) {
@@ -23,11 +28,6 @@ struct Fnv1a {
         hash = (hash ^ 0xff) * 0x100000001b3ull;  // separator: "ab","c" != "a","bc"
     }
 };
-
-bool isShaderSource(const fs::path& path) {
-    const std::string ext = path.extension().string();
-    return ext == ".comp" || ext == ".glsl" || ext == ".h";
-}
 
 }  // namespace
 
@@ -41,22 +41,21 @@ std::string spirvCacheDirectory() {
 }
 
 std::string spirvCacheKey(const ShaderSource& source) {
+    return spirvCacheKey(source, readShaderFiles(source.directory));
+}
+
+std::string spirvCacheKey(const ShaderSource& source, const ShaderFiles& files) {
     Fnv1a h;
+    h.add(kCacheFormat);
     h.add(glslangVersion());
     h.add(source.mainFile);
     for (const auto& [name, value] : source.defines) {
         h.add(name);
         h.add(value);
     }
-    std::vector<fs::path> files;
-    std::error_code ec;
-    for (fs::recursive_directory_iterator it(source.directory, ec), end; !ec && it != end;
-         it.increment(ec))
-        if (it->is_regular_file() && isShaderSource(it->path())) files.push_back(it->path());
-    std::sort(files.begin(), files.end());
-    for (const fs::path& file : files) {
-        h.add(fs::relative(file, source.directory).string());
-        h.add(readFileIfPresent(file.string()).value_or(""));
+    for (const auto& [path, bytes] : files) {
+        h.add(path);
+        h.add(bytes);
     }
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.hash));
@@ -66,7 +65,8 @@ std::string spirvCacheKey(const ShaderSource& source) {
 CompiledShader loadOrCompile(const ShaderSource& source) {
     const Stopwatch stopwatch;
     CompiledShader result;
-    result.key = spirvCacheKey(source);
+    const ShaderFiles files = readShaderFiles(source.directory);
+    result.key = spirvCacheKey(source, files);
     const fs::path file = fs::path(spirvCacheDirectory()) / (result.key + ".spv");
 
     if (const std::optional<std::string> cached = readFileIfPresent(file.string())) {
@@ -78,7 +78,7 @@ CompiledShader loadOrCompile(const ShaderSource& source) {
         }
     }
     if (!result.cacheHit) {
-        result.spirv = compileComputeShader(source);
+        result.spirv = compileComputeShader(source, files);
         std::error_code ec;
         fs::create_directories(file.parent_path(), ec);
         try {

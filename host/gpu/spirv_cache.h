@@ -21,12 +21,15 @@ struct CompiledShader {
 // $VKRAY_CACHE_DIR, else $XDG_CACHE_HOME/vkray, else $HOME/.cache/vkray.
 std::string spirvCacheDirectory();
 
-// The cache key of `source`: FNV-1a 64 over glslang's version, the main file
-// name, the defines, and the path and bytes of every file under the folder.
+// The cache key of `source` compiled from `files`: FNV-1a 64 over the
+// cache's format, glslang's version, the main file name, the defines, and
+// the path and bytes of every file; without `files`, of the folder as it is.
+std::string spirvCacheKey(const ShaderSource& source, const ShaderFiles& files);
 std::string spirvCacheKey(const ShaderSource& source);
 
-// Loads the cached SPIR-V or compiles and stores it (atomically). A cache
-// folder that cannot be written only costs the compile.
+// Loads the cached SPIR-V or compiles and stores it (atomically), the key
+// and the compile from one reading of the folder. A cache folder that cannot
+// be written only costs the compile.
 CompiledShader loadOrCompile(const ShaderSource& source);
 
 }  // namespace vkray::gpu

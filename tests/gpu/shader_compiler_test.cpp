@@ -5,6 +5,7 @@
 #include "shaders/layout.h"
 #include "support/error_of.h"
 #include "support/gpu_fixture.h"
+#include "support/temp_folder.h"
 #include "util/error.h"
 
 #include <gtest/gtest.h>
@@ -20,11 +21,10 @@ namespace fs = std::filesystem;
 
 constexpr std::uint32_t kSpirvMagic = 0x07230203;
 
-// A fresh shader folder with the given files.
-fs::path shaderFolder(const std::string& name,
+// A shader folder in `scratch` with the given files.
+fs::path shaderFolder(const test::TempFolder& scratch,
                       const std::vector<std::pair<std::string, std::string>>& files) {
-    fs::path dir = fs::path(::testing::TempDir()) / ("vkray-shaders-" + name);
-    fs::remove_all(dir);
+    const fs::path dir = scratch.path() / "shaders";
     for (const auto& [file, text] : files) {
         fs::create_directories((dir / file).parent_path());
         std::ofstream(dir / file) << text;
@@ -68,11 +68,12 @@ TEST(ShaderCompiler, TheTracerRefusesAVariantWithAFlagMissing) {
 }
 
 TEST(ShaderCompiler, ErrorInIncludedFileNamesThatFileAndLine) {
-    fs::path dir = shaderFolder("broken", {{"main.comp", kTinyMain},
-                                           {"lib/helper.glsl",
-                                            "float helper() {\n"
-                                            "  return undefinedName;\n"
-                                            "}\n"}});
+    const test::TempFolder scratch("vkray-shaders");
+    fs::path dir = shaderFolder(scratch, {{"main.comp", kTinyMain},
+                                          {"lib/helper.glsl",
+                                           "float helper() {\n"
+                                           "  return undefinedName;\n"
+                                           "}\n"}});
     try {
         compileComputeShader({dir.string(), "main.comp", {}});
         FAIL() << "a broken shader compiled";
@@ -84,26 +85,28 @@ TEST(ShaderCompiler, ErrorInIncludedFileNamesThatFileAndLine) {
 }
 
 TEST(ShaderCompiler, DefinesReachTheShader) {
+    const test::TempFolder scratch("vkray-shaders");
     fs::path dir = shaderFolder(
-        "defines",
+        scratch,
         {{"main.comp", kTinyMain}, {"lib/helper.glsl", "float helper() { return VALUE; }\n"}});
     EXPECT_THROW(compileComputeShader({dir.string(), "main.comp", {}}), Error);
     EXPECT_NO_THROW(compileComputeShader({dir.string(), "main.comp", {{"VALUE", "2.0"}}}));
 }
 
 TEST(ShaderCompiler, IncludesOutsideTheShaderFolderAreRefused) {
+    const test::TempFolder scratch("vkray-shaders");
     fs::path dir = shaderFolder(
-        "escape",
+        scratch,
         {{"main.comp", kTinyMain}, {"lib/helper.glsl", "#include \"../../outside.glsl\"\n"}});
     std::ofstream(dir.parent_path() / "outside.glsl") << "float helper() { return 1.0; }\n";
     EXPECT_THROW(compileComputeShader({dir.string(), "main.comp", {}}), Error);
 }
 
 TEST(SpirvCache, KeyFollowsSourcesAndDefinesAndSecondLoadHits) {
-    fs::path dir = shaderFolder("cache", {{"main.comp", kTinyMain},
+    const test::TempFolder scratch("vkray-shaders");
+    fs::path dir = shaderFolder(scratch, {{"main.comp", kTinyMain},
                                           {"lib/helper.glsl", "float helper() { return 1.0; }\n"}});
-    fs::path cache = fs::path(::testing::TempDir()) / "vkray-cache-test";
-    fs::remove_all(cache);
+    const fs::path cache = scratch.path() / "cache";
     const char* previous = std::getenv("VKRAY_CACHE_DIR");
     const std::string saved = previous ? previous : "";
     ::setenv("VKRAY_CACHE_DIR", cache.c_str(), 1);
@@ -126,6 +129,41 @@ TEST(SpirvCache, KeyFollowsSourcesAndDefinesAndSecondLoadHits) {
         ::setenv("VKRAY_CACHE_DIR", saved.c_str(), 1);
     else
         ::unsetenv("VKRAY_CACHE_DIR");
+}
+
+TEST(SpirvCache, TheKeyAndTheCompileReadTheSameBytes) {
+    // A file saved between the key's reading and the compile's must not put
+    // the new file's SPIR-V under the old file's key: the compile takes the
+    // bytes the key was made of.
+    const test::TempFolder scratch("vkray-shaders");
+    const fs::path dir = shaderFolder(
+        scratch,
+        {{"main.comp", kTinyMain}, {"lib/helper.glsl", "float helper() { return 1.0; }\n"}});
+    const ShaderSource source{dir.string(), "main.comp", {}};
+    const ShaderFiles before = readShaderFiles(dir.string());
+    EXPECT_EQ(before.size(), 2u);
+    EXPECT_EQ(before.at("lib/helper.glsl"), "float helper() { return 1.0; }\n");
+    std::ofstream(dir / "lib/helper.glsl") << "this is not GLSL\n";  // the save
+    EXPECT_THROW(compileComputeShader(source), Error);               // the folder now
+    const std::vector<std::uint32_t> spirv = compileComputeShader(source, before);
+    ASSERT_FALSE(spirv.empty());
+    EXPECT_EQ(spirv[0], kSpirvMagic);
+    EXPECT_NE(spirvCacheKey(source, before), spirvCacheKey(source));
+    EXPECT_EQ(spirvCacheKey(source, before), spirvCacheKey(source, before));
+}
+
+TEST(ShaderCompiler, IncludesResolveAmongTheShaderSourcesOnly) {
+    // Only .comp, .glsl and .h files are read (and keyed): an include of
+    // another kind is refused, rather than compiled and left out of the key.
+    const test::TempFolder scratch("vkray-shaders");
+    const fs::path dir =
+        shaderFolder(scratch, {{"main.comp", kTinyMain},
+                               {"lib/helper.glsl", "#include \"part.inc\"\n"},
+                               {"lib/part.inc", "float helper() { return 1.0; }\n"}});
+    const std::string message = errorOf([&] {
+        compileComputeShader({dir.string(), "main.comp", {}});
+    });
+    EXPECT_NE(message.find("part.inc"), std::string::npos) << message;
 }
 
 TEST(ShaderCompiler, CompilesTheViewsPresentShader) {
