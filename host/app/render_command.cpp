@@ -188,7 +188,12 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
 int runWatch(const Options& o, std::ostream& out, std::ostream& err) {
     GpuSession session;
     const std::string shaders = o.cpu ? std::string() : shaderDirectoryFor(o);
+    // Watching from before the first render: a save made while a render runs
+    // brings the next one.
+    FileWatcher watcher;
     for (bool first = true; !stopRequested(); first = false) {
+        for (const std::string& file : sceneInputs(o)) watcher.watchFile(file);
+        if (!shaders.empty()) watcher.watchFolder(shaders);
         const Stopwatch stopwatch;
         try {
             renderOnce(o, session, out, err);
@@ -198,9 +203,6 @@ int runWatch(const Options& o, std::ostream& out, std::ostream& err) {
             printError(e, err);
             err << "vkray: kept the last good image; fix the error and save to retry\n";
         }
-        FileWatcher watcher;
-        for (const std::string& file : sceneInputs(o)) watcher.watchFile(file);
-        if (!shaders.empty()) watcher.watchFolder(shaders);
         out << "watching " << o.scenePath << (shaders.empty() ? "" : " and " + shaders)
             << " (Ctrl-C stops)" << std::endl;
         err.flush();

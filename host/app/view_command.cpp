@@ -167,7 +167,7 @@ public:
 
     int run() {
         load(true);
-        armWatcher();
+        watchInputs();
         while (!quit_ && !stopRequested()) {
             handle(window_.events());
             if (reloadDue_ || (watcher_ && watcher_->changed())) reload();
@@ -217,11 +217,14 @@ private:
         reloadDue_ = false;
         load(false);
         ++reloads_;
-        armWatcher();
+        watchInputs();
     }
 
-    void armWatcher() {
-        watcher_ = std::make_unique<FileWatcher>();
+    // One watcher for the whole session, so that a save made while a reload
+    // reads the files is seen and reloads again; each reload adds what the
+    // scene now reads (a new include, a new mesh file).
+    void watchInputs() {
+        if (!watcher_) watcher_ = std::make_unique<FileWatcher>();
         for (const std::string& file : sceneInputs(o_)) watcher_->watchFile(file);
         watcher_->watchFolder(shaders_);
         out_ << "watching " << o_.scenePath << " and " << shaders_ << std::endl;

@@ -76,6 +76,7 @@ bool FileWatcher::readEvents() {
         for (ssize_t at = 0; at < n;) {
             const auto* event = reinterpret_cast<const inotify_event*>(buffer + at);
             const auto watched = names_.find(event->wd);
+            if (event->mask & IN_Q_OVERFLOW) changed = true;  // events were lost: assume ours
             if (watched != names_.end() && event->len > 0)
                 changed = changed || watched->second.count("") > 0 ||
                           watched->second.count(event->name) > 0;

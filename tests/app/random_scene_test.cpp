@@ -5,6 +5,7 @@
 
 #include "reference/shading.h"
 #include "scene/scene_geometry.h"
+#include "support/temp_folder.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
@@ -35,9 +36,8 @@ TEST(RandomScene, TheSameSeedDrawsTheSameScene) {
 }
 
 TEST(RandomScene, EverySceneLoadsAndTogetherTheyCoverTheLanguage) {
-    const fs::path dir = fs::temp_directory_path() / "vkray-random-scene-test";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const test::TempFolder scratch("vkray-random-scene-test");
+    const fs::path& dir = scratch.path();
     std::set<std::string> words;
     std::set<Precision> modes;
     bool bvh = false, antialiased = false, blocks = false, inside = false, near = false;
@@ -106,7 +106,6 @@ TEST(RandomScene, EverySceneLoadsAndTogetherTheyCoverTheLanguage) {
     EXPECT_TRUE(blocks);
     EXPECT_TRUE(inside);
     EXPECT_TRUE(near);
-    fs::remove_all(dir);
 }
 
 // Each mode's scenes reach every figure of their envelope (docs/numerics.md,

@@ -80,10 +80,14 @@ protected:
             std::this_thread::sleep_for(std::chrono::milliseconds(100));
         return shown.exited() ? shown.stop() : -2;
     }
-    // Replaces the file at once (written beside it, renamed over it), as an editor saves.
+    // Replaces the file at once, as an editor saves: written in the test's
+    // folder under a name the view does not watch, then renamed over it. A
+    // save is then one change, however slowly the test runs: a file written
+    // beside a shader would be a change of the shader folder of its own.
     void save(const std::string& path, const std::string& text) {
-        std::ofstream(path + ".new") << text;
-        fs::rename(path + ".new", path);
+        const fs::path written = dir / (fs::path(path).filename().string() + ".saving");
+        std::ofstream(written) << text;
+        fs::rename(written, path);
     }
     std::string environment;
 };

@@ -4,6 +4,7 @@
 // but 0.1 % of the pixels) and object ids equal everywhere.
 #include "support/frame_difference.h"
 #include "support/gpu_fixture.h"
+#include "support/temp_folder.h"
 
 #include "image/aov_images.h"
 #include "image/image_io.h"
@@ -259,9 +260,8 @@ TEST(AgreementRegressions, ATeapotSquashedFarAwayInAnObjectBvhIsDrawnAndWalkedAs
 // object BVH, whose walk enters the mesh): their faces tie, and the lower
 // object index wins on the GPU as in the reference, in either order.
 TEST(AgreementRegressions, AMeshCoincidingWithACubeTiesAsInTheReference) {
-    const std::filesystem::path dir =
-        std::filesystem::path(::testing::TempDir()) / "vkray_mesh_tie";
-    std::filesystem::create_directories(dir);
+    const test::TempFolder scratch("vkray-mesh-tie");
+    const std::filesystem::path& dir = scratch.path();
     std::ofstream(dir / "square.dat") << "4\n-1 -1\n1 -1\n1 1\n-1 1\n";
     const std::string prism = "push translate 0 0 -1 scale 1 1 2 extrude square.dat pop\n";
     std::string spheres;

@@ -5,9 +5,9 @@
 #include "image/aov_images.h"
 #include "image/image_io.h"
 #include "support/error_of.h"
+#include "support/temp_folder.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -32,15 +32,6 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 class ExrIo : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir = fs::path(::testing::TempDir()) /
-              ("vkray-exr-io-" + std::to_string(::getpid()) + "-" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-
     std::string path(const std::string& name) const { return (dir / name).string(); }
     std::string readBytes(const std::string& name) const {
         std::ifstream in(path(name), std::ios::binary);
@@ -56,7 +47,8 @@ protected:
         return names;
     }
 
-    fs::path dir;
+    test::TempFolder scratch_{"vkray-exr-io"};
+    const fs::path dir = scratch_.path();
 };
 
 // Bit patterns, so that NaN, -0 and denormals count as they are stored.

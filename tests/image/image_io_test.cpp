@@ -3,7 +3,6 @@
 #include "image/stb_codecs.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -15,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_folder.h"
 #include "util/error.h"
 
 namespace vkray {
@@ -27,15 +27,6 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 // Each test gets its own empty folder, removed afterwards.
 class ImageIo : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir = fs::path(::testing::TempDir()) /
-              ("vkray-image-io-" + std::to_string(::getpid()) + "-" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-
     std::string path(const std::string& name) const { return (dir / name).string(); }
 
     std::vector<std::string> filesInDir() const {
@@ -54,7 +45,8 @@ protected:
         std::ofstream(path(name), std::ios::binary) << bytes;
     }
 
-    fs::path dir;
+    test::TempFolder scratch_{"vkray-image-io"};
+    const fs::path dir = scratch_.path();
 };
 
 // The message of the Error `f` throws; fails the test when it throws none.

@@ -11,6 +11,7 @@
 #include "numerics/secondary_check.h"
 #include "numerics/stress_report.h"
 #include "support/gpu_fixture.h"
+#include "support/temp_folder.h"
 #include "util/error.h"
 
 #include <nlohmann/json.hpp>
@@ -274,10 +275,11 @@ TEST(StressSuite, HasTheCasesTheIssueAsksFor) {
 class StressHeader : public ::testing::Test {
 protected:
     std::string write(const std::string& text) {
-        const fs::path p = fs::path(::testing::TempDir()) / "vkray-stress-header.sdl";
+        const fs::path p = scratch_.path() / "header.sdl";
         std::ofstream(p) << text;
         return p.string();
     }
+    test::TempFolder scratch_{"vkray-stress-header"};
 };
 
 TEST_F(StressHeader, ReadsKeysAndContinuations) {

@@ -3,7 +3,6 @@
 // (Frame equality across thread counts is in reference_tracer_test.cpp; this
 // checks the files a user gets.)
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -17,6 +16,7 @@
 #include "reference/reference_tracer.h"
 #include "render/camera.h"
 #include "scene/sdl_reader.h"
+#include "support/temp_folder.h"
 
 #ifndef VKRAY_SOURCE_DIR
 #define VKRAY_SOURCE_DIR "."
@@ -29,15 +29,6 @@ namespace fs = std::filesystem;
 
 class Determinism : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir = fs::path(::testing::TempDir()) /
-              ("vkray-determinism-" + std::to_string(::getpid()) + "-" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-
     std::string bytesOf(const std::string& name) const {
         std::ifstream in(dir / name, std::ios::binary);
         return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -52,7 +43,8 @@ protected:
                bytesOf(name + ".normal.pfm") + bytesOf(name + ".id.pfm");
     }
 
-    fs::path dir;
+    test::TempFolder scratch_{"vkray-determinism"};
+    const fs::path dir = scratch_.path();
 };
 
 TEST_F(Determinism, CpuReferenceGivesTheSameFilesRunAfterRunWithAnyThreadCount) {

@@ -15,6 +15,7 @@
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 #include "support/error_of.h"
+#include "support/temp_folder.h"
 #include "util/error.h"
 
 #ifndef VKRAY_SOURCE_DIR
@@ -70,9 +71,8 @@ TEST(Pixmaps, AMissingFileFailsAtTheMakePixmapWord) {
 }
 
 TEST(Pixmaps, AnUndecodableImageFailsAtTheMakePixmapWord) {
-    const std::filesystem::path folder =
-        std::filesystem::temp_directory_path() / "vkray_pixmaps_test";
-    std::filesystem::create_directories(folder);
+    const test::TempFolder scratch("vkray-pixmaps-test");
+    const std::filesystem::path& folder = scratch.path();
     std::ofstream(folder / "broken.png") << "this is not a PNG";
     std::ofstream(folder / "picture.tga") << "TGA";
     const std::string file = (folder / "t.sdl").string();
@@ -91,7 +91,6 @@ TEST(Pixmaps, AnUndecodableImageFailsAtTheMakePixmapWord) {
         message.find("unsupported image format '.tga' (use .png, .pfm or .exr, or .bmp to read)"),
         std::string::npos)
         << message;
-    std::filesystem::remove_all(folder);
 }
 
 TEST(Pixmaps, ADuplicateIndexFailsAtTheSecondMakePixmap) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_folder.h"
 #include "util/error.h"
 
 namespace vkray {
@@ -498,15 +499,8 @@ TEST(SdlReader, CrlfAndLatin1InCommentsAreFine) {
 
 class SdlFileTest : public ::testing::Test {
 protected:
-    void SetUp() override {
-        folder_ = fs::temp_directory_path() /
-                  ("vkray_sdl_reader_test_" +
-                   std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(folder_);
-    }
-    void TearDown() override { fs::remove_all(folder_); }
-    fs::path folder_;
+    test::TempFolder scratch_{"vkray-sdl-reader"};
+    const fs::path folder_ = scratch_.path();
 };
 
 TEST_F(SdlFileTest, LoadsAFileAndResolvesMeshesNextToIt) {

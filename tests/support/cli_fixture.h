@@ -2,6 +2,8 @@
 // collect exit status and output, write scene files into a per-test folder.
 #pragma once
 
+#include "support/temp_folder.h"
+
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -133,13 +135,6 @@ private:
 
 class CliTest : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir = fs::path(::testing::TempDir()) /
-              ("vkray-cli-" +
-               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
     std::string scene(const std::string& name, const std::string& text) {
         fs::path p = dir / name;
         std::ofstream(p) << text;
@@ -161,7 +156,12 @@ protected:
         EXPECT_NE(run.output.find(expected), std::string::npos) << run.output;
         expectNoOutputs();
     }
-    fs::path dir;
+
+private:
+    TempFolder scratch_{"vkray-cli"};
+
+protected:
+    const fs::path dir = scratch_.path();
 };
 
 }  // namespace vkray::test

@@ -1,7 +1,6 @@
 #include "util/files.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -10,6 +9,7 @@
 #include <vector>
 
 #include "support/error_of.h"
+#include "support/temp_folder.h"
 
 namespace vkray {
 namespace {
@@ -19,15 +19,6 @@ namespace fs = std::filesystem;
 // Each test gets its own empty folder, removed afterwards.
 class Files : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir = fs::path(::testing::TempDir()) /
-              ("vkray-files-" + std::to_string(::getpid()) + "-" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-
     std::string path(const std::string& name) const { return (dir / name).string(); }
     std::size_t fileCount() const {
         return std::size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
@@ -37,7 +28,8 @@ protected:
         return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     }
 
-    fs::path dir;
+    test::TempFolder scratch_{"vkray-files"};
+    const fs::path dir = scratch_.path();
 };
 
 TEST_F(Files, AtomicWriteReplacesTheWholeFile) {
