@@ -7,11 +7,9 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <memory>
-#include <mutex>
-#include <sstream>
+#include <optional>
 
 namespace vkray::gpu {
 
