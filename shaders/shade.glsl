@@ -268,23 +268,42 @@ uint nextFacingLight(uint i, GpuMaterial object, Surface s, vec3 v, vec3 k, bool
     }
     return i;
 }
+
+// The shadow feeler from surface s toward light i: from just off the
+// surface, on m's side (where lit lights are), to the light.
+void feelerToward(uint i, Surface s, out rvec3 origin, out rvec3 direction, out real tMax) {
+    origin = offsetOrigin(s.p, s.geometric, s.m, lightOf(i).position.xyz - vec3(s.p), s.genericScale);
+    direction = lightOf(i).position.xyz - origin;
+    tMax = length(direction);
+    direction /= tMax;
+}
 #endif
+
+// Where a walk is a few objects' tests unrolled (VKRAY_OBJECTS), it is a
+// small part of a turn of traceSamples' loop, and the hit's shading most of
+// it, which llvmpipe runs on every turn whatever the lanes need: a hit's
+// feelers are then walked in a loop of their own at the hit, its shading
+// run once for them all, at the price of a second copy of the walk's code.
+// A BVH's walk is most of a turn, and much more code: there each feeler
+// takes a turn of the loop, which walks the scene in one place only
+// (BENCHMARKS.md, ninth round).
+#define VKRAY_FEELER_LOOP (VKRAY_SHADOWS && VKRAY_OBJECTS > 0)
 
 // This invocation's samples, from where `ray` (GpuRayProgress) says an
 // earlier dispatch left them, until they are done or loopTurns has passed
 // `budget`. Each sample is Hill's shade() down to maxRecursionDepth, its
 // recursion unrolled: the tree of reflected and refracted rays is walked
 // depth first with the stack of pending rays; the shadow feelers of a hit
-// are walked one per step, so that the loop walks the scene (walkScene) in
-// one place only. Each turn walks once: llvmpipe runs a loop's whole body on
-// every turn, walk included, whatever the lanes need, so the decision to
-// stop is taken at the end of the turn that finished the work, never at the
-// start of an extra one. A dispatch stops only between two rays, when all
-// that is pending is on the stack, so a paused sample goes on as if it had
-// never stopped: the image does not depend on the budget. When this
-// dispatch traced sample 0's primary ray, aovFound is true and `aov` holds
-// the pixel's object id and AOVs (its colour 0); `firstPixel` is the pixel
-// of the stress output.
+// are walked one per turn, or (VKRAY_FEELER_LOOP) all of them at the hit.
+// Each turn walks a ray or a feeler (or a ray, then its hit's feelers):
+// llvmpipe runs a loop's whole body on every turn, walk included, whatever
+// the lanes need, so the decision to stop is taken at the end of the turn
+// that finished the work, never at the start of an extra one. A dispatch
+// stops only between two rays, when all that is pending is on the stack,
+// so a paused sample goes on as if it had never stopped: the image does not
+// depend on the budget. When this dispatch traced sample 0's primary ray,
+// aovFound is true and `aov` holds the pixel's object id and AOVs (its
+// colour 0); `firstPixel` is the pixel of the stress output.
 void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint budget,
                   out bool aovFound, out GpuPixel aov) {
     uint sampleIndex = floatBitsToUint(ray.sum.w);
@@ -306,17 +325,16 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
     while (true) {
         ++loopTurns;
         // This turn's walk: the feeler toward the next facing light, or the next ray.
+#if VKRAY_FEELER_LOOP
+        const bool feeler = false;
+#else
         bool feeler = light < lightCount;
+#endif
         rvec3 walkOrigin, walkDirection;
         real walkMax = INFINITY;
         if (feeler) {
 #if VKRAY_SHADOWS
-            // Lit lights are on m's side.
-            walkOrigin = offsetOrigin(s.p, s.geometric, s.m, lightOf(light).position.xyz - vec3(s.p),
-                                      s.genericScale);
-            walkDirection = lightOf(light).position.xyz - walkOrigin;
-            walkMax = length(walkDirection);
-            walkDirection /= walkMax;
+            feelerToward(light, s, walkOrigin, walkDirection, walkMax);
 #endif
         } else {
 #if VKRAY_RAY_STACK
@@ -357,6 +375,13 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
             if (hit.object < 0) {
                 color += task.weight * frame.background.rgb;
             } else {
+#if VKRAY_FEELER_LOOP
+                // This hit's own: no later turn reads them (with llvmpipe's
+                // lane masks, the loop's would be carried from turn to turn).
+                Surface s;
+                GpuMaterial object;
+                vec3 k;
+#endif
                 s = surfaceAt(hit, task.origin, task.direction);
                 k = hitTexture(hit, task.origin, task.direction);
                 object = materialOf(hit.surface);
@@ -368,9 +393,26 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
 #endif
                 }
                 // Emissive and ambient now; each facing light's feeler in the
-                // turns that follow (without shadows, every light now).
+                // turns that follow, or now (VKRAY_FEELER_LOOP; without
+                // shadows, every light now).
                 color += task.weight * (object.emissive.rgb + k * object.ambient.rgb * frame.globalAmbient.rgb);
-#if VKRAY_SHADOWS
+#if VKRAY_SHADOWS && VKRAY_FEELER_LOOP
+                for (uint light = nextFacingLight(0u, object, s, v, k, record); light < lightCount;
+                     light = nextFacingLight(light + 1u, object, s, v, k, record)) {
+                    ++loopTurns;
+                    rvec3 feelerOrigin, feelerDirection;
+                    real feelerMax;
+                    feelerToward(light, s, feelerOrigin, feelerDirection, feelerMax);
+                    Hit blocker;
+                    float through;
+                    walkScene(feelerOrigin, feelerDirection, feelerMax, true, blocker, through);
+#if VKRAY_STRESS_OUTPUT
+                    stressRecordWalk(firstPixel, sampleIndex, task.level, true, light, feelerOrigin,
+                                     feelerDirection, blocker);
+#endif
+                    color += task.weight * lightTerm(object, s, v, k, light, through, record);
+                }
+#elif VKRAY_SHADOWS
                 light = nextFacingLight(0u, object, s, v, k, record);
 #elif VKRAY_LIGHTS
                 for (uint i = 0u; i < lightCount; ++i) {
