@@ -4,6 +4,7 @@
 #include "util/stopwatch.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -20,6 +21,16 @@ constexpr std::uint32_t kSpirvMagic = 0x07230203;
 // 2 since the key and the compile read the same bytes (before, a file saved
 // between the two could leave its SPIR-V under the old bytes' key).
 constexpr const char* kCacheFormat = "vkray-spirv-cache 2";
+
+constexpr std::size_t kKeyDigits = 16;
+
+// A cache entry's name: the key's 16 hex digits and ".spv".
+bool isEntryName(const std::string& name) {
+    const std::string suffix = ".spv";
+    if (name.size() != kKeyDigits + suffix.size() || !name.ends_with(suffix)) return false;
+    return std::all_of(name.begin(), name.begin() + kKeyDigits,
+                       [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); });
+}
 
 struct Fnv1a {
     std::uint64_t hash = 0xcbf29ce484222325ull;
@@ -77,20 +88,55 @@ CompiledShader loadOrCompile(const ShaderSource& source) {
             result.cacheHit = result.spirv[0] == kSpirvMagic;
         }
     }
+    std::error_code ec;
+    if (result.cacheHit) fs::last_write_time(file, fs::file_time_type::clock::now(), ec);
     if (!result.cacheHit) {
         result.spirv = compileComputeShader(source, files);
-        std::error_code ec;
         fs::create_directories(file.parent_path(), ec);
         try {
             writeFileAtomically(file.string(),
                                 std::string(reinterpret_cast<const char*>(result.spirv.data()),
                                             result.spirv.size() * 4));
+            pruneSpirvCache(file.parent_path().string(), kSpirvCacheLimitBytes,
+                            file.filename().string());
         } catch (const std::exception&) {
             // An unwritable cache costs only the next compile.
         }
     }
     result.seconds = stopwatch.seconds();
     return result;
+}
+
+std::size_t pruneSpirvCache(const std::string& dir, std::uintmax_t limitBytes,
+                            const std::string& keep) {
+    struct Entry {
+        fs::path path;
+        fs::file_time_type used;
+        std::uintmax_t bytes;
+    };
+    std::vector<Entry> entries;
+    std::uintmax_t total = 0;
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (!isEntryName(name)) continue;
+        std::error_code statError;
+        const std::uintmax_t bytes = it->file_size(statError);
+        const fs::file_time_type used = it->last_write_time(statError);
+        if (statError) continue;  // gone meanwhile, or not a plain file
+        total += bytes;
+        if (name != keep) entries.push_back({it->path(), used, bytes});
+    }
+    std::sort(entries.begin(), entries.end(),
+              [](const Entry& a, const Entry& b) { return a.used < b.used; });
+    std::size_t removed = 0;
+    for (const Entry& entry : entries) {
+        if (total <= limitBytes) break;
+        std::error_code removeError;
+        if (fs::remove(entry.path, removeError)) ++removed;
+        total -= entry.bytes;  // removed by another process, if not by this one
+    }
+    return removed;
 }
 
 }  // namespace vkray::gpu

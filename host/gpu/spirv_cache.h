@@ -5,6 +5,7 @@
 
 #include "gpu/shader_compiler.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,7 +30,21 @@ std::string spirvCacheKey(const ShaderSource& source);
 
 // Loads the cached SPIR-V or compiles and stores it (atomically), the key
 // and the compile from one reading of the folder. A cache folder that cannot
-// be written only costs the compile.
+// be written only costs the compile. A load marks its entry used (its time);
+// a store prunes the folder to kSpirvCacheLimitBytes.
 CompiledShader loadOrCompile(const ShaderSource& source);
+
+// The most the cache's entries may hold together: each shader edit adds one
+// variant's SPIR-V (60 to 90 KB for trace.comp), so a folder left alone
+// would only grow. 64 MiB keeps about 800 variants.
+inline constexpr std::uintmax_t kSpirvCacheLimitBytes = std::uintmax_t(64) << 20;
+
+// Removes the entries of cache folder `dir` (its files named as a key and
+// ".spv"; nothing else there is touched) used least recently, oldest first,
+// until they hold at most `limitBytes` together; the entry `keep` (a file
+// name) stays whatever its size. An entry another process removed meanwhile
+// is passed over. Returns how many it removed.
+std::size_t pruneSpirvCache(const std::string& dir, std::uintmax_t limitBytes,
+                            const std::string& keep);
 
 }  // namespace vkray::gpu

@@ -10,9 +10,13 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace vkray::gpu {
 namespace {
@@ -102,14 +106,32 @@ TEST(ShaderCompiler, IncludesOutsideTheShaderFolderAreRefused) {
     EXPECT_THROW(compileComputeShader({dir.string(), "main.comp", {}}), Error);
 }
 
+// VKRAY_CACHE_DIR set to `dir` for a test's lifetime.
+class ScopedCacheDir {
+public:
+    explicit ScopedCacheDir(const fs::path& dir) {
+        if (const char* previous = std::getenv("VKRAY_CACHE_DIR")) saved_ = previous;
+        ::setenv("VKRAY_CACHE_DIR", dir.c_str(), 1);
+    }
+    ~ScopedCacheDir() {
+        if (saved_)
+            ::setenv("VKRAY_CACHE_DIR", saved_->c_str(), 1);
+        else
+            ::unsetenv("VKRAY_CACHE_DIR");
+    }
+    ScopedCacheDir(const ScopedCacheDir&) = delete;
+    ScopedCacheDir& operator=(const ScopedCacheDir&) = delete;
+
+private:
+    std::optional<std::string> saved_;
+};
+
 TEST(SpirvCache, KeyFollowsSourcesAndDefinesAndSecondLoadHits) {
     const test::TempFolder scratch("vkray-shaders");
     fs::path dir = shaderFolder(scratch, {{"main.comp", kTinyMain},
                                           {"lib/helper.glsl", "float helper() { return 1.0; }\n"}});
     const fs::path cache = scratch.path() / "cache";
-    const char* previous = std::getenv("VKRAY_CACHE_DIR");
-    const std::string saved = previous ? previous : "";
-    ::setenv("VKRAY_CACHE_DIR", cache.c_str(), 1);
+    const ScopedCacheDir cacheDir(cache);
     const ShaderSource source{dir.string(), "main.comp", {}};
     const std::string key = spirvCacheKey(source);
     EXPECT_NE(key, spirvCacheKey({dir.string(), "main.comp", {{"X", "1"}}}));
@@ -125,10 +147,58 @@ TEST(SpirvCache, KeyFollowsSourcesAndDefinesAndSecondLoadHits) {
     std::ofstream(dir / "lib/helper.glsl") << "float helper() { return 2.0; }\n";
     EXPECT_NE(spirvCacheKey(source), key);
     EXPECT_FALSE(loadOrCompile(source).cacheHit);
-    if (previous)
-        ::setenv("VKRAY_CACHE_DIR", saved.c_str(), 1);
-    else
-        ::unsetenv("VKRAY_CACHE_DIR");
+}
+
+// A file of `bytes` bytes at `path`, last used `age` ago.
+void writeAged(const fs::path& path, std::size_t bytes, std::chrono::hours age) {
+    std::ofstream(path) << std::string(bytes, 'x');
+    fs::last_write_time(path, fs::file_time_type::clock::now() - age);
+}
+
+TEST(SpirvCache, PruningRemovesTheEntriesUsedLeastRecentlyAndNothingElse) {
+    const test::TempFolder scratch("vkray-cache");
+    const fs::path dir = scratch.path();
+    // Five entries of 1000 bytes, e0 the oldest; and files that are not entries.
+    const std::vector<std::string> entries = {"000000000000000a.spv", "000000000000000b.spv",
+                                              "000000000000000c.spv", "000000000000000d.spv",
+                                              "000000000000000e.spv"};
+    for (std::size_t i = 0; i < entries.size(); ++i)
+        writeAged(dir / entries[i], 1000, std::chrono::hours(10 - i));
+    const std::vector<std::string> others = {"notes.txt", "0123.spv", "000000000000000f.spv.tmp",
+                                             "000000000000000g.spv"};
+    for (const std::string& other : others) writeAged(dir / other, 5000, std::chrono::hours(99));
+
+    // 2500 bytes of entries at most, the oldest kept (it was just written):
+    // the next three oldest go, the newest stays.
+    EXPECT_EQ(pruneSpirvCache(dir.string(), 2500, entries[0]), 3u);
+    for (std::size_t i = 0; i < entries.size(); ++i)
+        EXPECT_EQ(fs::exists(dir / entries[i]), i == 0 || i == 4) << entries[i];
+    for (const std::string& other : others) EXPECT_TRUE(fs::exists(dir / other)) << other;
+
+    // Within the limit, nothing goes; a folder that is not there is no error.
+    EXPECT_EQ(pruneSpirvCache(dir.string(), 2000, ""), 0u);
+    EXPECT_EQ(pruneSpirvCache((dir / "absent").string(), 0, ""), 0u);
+}
+
+TEST(SpirvCache, ALoadMarksItsEntryUsedSoThatPruningKeepsIt) {
+    const test::TempFolder scratch("vkray-shaders");
+    const fs::path dir = shaderFolder(
+        scratch,
+        {{"main.comp", kTinyMain}, {"lib/helper.glsl", "float helper() { return 1.0; }\n"}});
+    const fs::path cache = scratch.path() / "cache";
+    const ScopedCacheDir cacheDir(cache);
+    const ShaderSource used{dir.string(), "main.comp", {}};
+    const ShaderSource unused{dir.string(), "main.comp", {{"X", "1"}}};
+    const fs::path usedEntry = cache / (loadOrCompile(used).key + ".spv");
+    const fs::path unusedEntry = cache / (loadOrCompile(unused).key + ".spv");
+    // Both written long ago, the one to be used the earlier.
+    fs::last_write_time(usedEntry, fs::file_time_type::clock::now() - std::chrono::hours(20));
+    fs::last_write_time(unusedEntry, fs::file_time_type::clock::now() - std::chrono::hours(10));
+
+    EXPECT_TRUE(loadOrCompile(used).cacheHit);
+    EXPECT_EQ(pruneSpirvCache(cache.string(), fs::file_size(usedEntry), ""), 1u);
+    EXPECT_TRUE(fs::exists(usedEntry));
+    EXPECT_FALSE(fs::exists(unusedEntry));
 }
 
 TEST(SpirvCache, TheKeyAndTheCompileReadTheSameBytes) {
