@@ -284,10 +284,10 @@ void feelerToward(uint i, Surface s, out rvec3 origin, out rvec3 direction, out 
 // it, which llvmpipe runs on every turn whatever the lanes need: a hit's
 // feelers are then walked in a loop of their own at the hit, its shading
 // run once for them all, at the price of a second copy of the walk's code.
-// A BVH's walk is most of a turn, and much more code: there each feeler
-// takes a turn of the loop, which walks the scene in one place only
-// (BENCHMARKS.md, ninth round).
-#define VKRAY_FEELER_LOOP (VKRAY_SHADOWS && VKRAY_OBJECTS > 0)
+// A BVH's walk, or one with CSG's evaluation, is most of a turn and much
+// more code: there each feeler takes a turn of the loop, which walks the
+// scene in one place only (BENCHMARKS.md, ninth round).
+#define VKRAY_FEELER_LOOP (VKRAY_SHADOWS && VKRAY_OBJECTS > 0 && !VKRAY_CSG)
 
 // This invocation's samples, from where `ray` (GpuRayProgress) says an
 // earlier dispatch left them, until they are done or loopTurns has passed
