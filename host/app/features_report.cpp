@@ -148,7 +148,9 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     out << "object BVH: " << (features.objectBvh ? "yes" : "no") << " (" << bounded
         << " bounded objects; more than " << gpu::kObjectBvhThreshold
         << ", or two with a mesh, get one)";
-    if (features.unrolledObjects > 0)
+    if (features.unrolledObjects == 1)
+        out << "; the one object tested alone, with its shape's code only";
+    else if (features.unrolledObjects > 1)
         out << "; each object tested in turn, the loop unrolled over the "
             << features.unrolledObjects << ", each test its object's shape's code alone";
     const bool booleans = features.kinds[gpu::KIND_BOOLEAN], tori = gpu::keepsTori(features);

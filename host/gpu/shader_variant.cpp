@@ -98,9 +98,10 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
     // test holding its object's shape's code alone. Tori and CSG objects
     // unrolled are only put on the list of objects tested after the others
     // (one copy of their code); a mesh's walk, or a torus that is not kept,
-    // would be compiled eight times: those keep the loop.
+    // would be compiled eight times: those keep the loop, unless alone.
     const bool unrollable =
-        !features.kinds[KIND_MESH] && (!features.kinds[KIND_TORUS] || keepsTori(features));
+        scene.objects.size() == 1 ||
+        (!features.kinds[KIND_MESH] && (!features.kinds[KIND_TORUS] || keepsTori(features)));
     if (!allFeatures && !features.objectBvh && unrollable &&
         scene.objects.size() <= kObjectBvhThreshold) {
         features.unrolledObjects = std::uint32_t(scene.objects.size());

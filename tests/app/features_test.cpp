@@ -113,6 +113,23 @@ TEST_F(Features, MeshSceneBindsMeshAndBvhBuffers) {
         << run.output;
 }
 
+TEST_F(Features, ALoneObjectIsTestedAloneWhateverItsShape) {
+    // A torus or a mesh among others keeps the loop over the run-time count;
+    // alone, its test is the walk (no loop, its code once).
+    for (const char* shape : {"torus", "tetrahedron"}) {
+        RunResult run =
+            vkray("features " + scene("lone.sdl", std::string("light 2 3 4 1 1 1\n") + shape));
+        ASSERT_EQ(run.status, 0) << run.output;
+        EXPECT_EQ(field(run.output, "object BVH"),
+                  "no (1 bounded objects; more than 8, or two with a mesh, get one); the one "
+                  "object tested alone, with its shape's code only")
+            << shape;
+        EXPECT_NE(field(run.output, "defines").find("VKRAY_OBJECTS=1 VKRAY_OBJECT_KINDS="),
+                  std::string::npos)
+            << run.output;
+    }
+}
+
 TEST_F(Features, VariantAllCompilesEveryFeatureAndBindsTheirBuffers) {
     RunResult run = vkray("features " + kScenes + "default.sdl --variant all -D EXTRA=2");
     ASSERT_EQ(run.status, 0) << run.output;

@@ -109,9 +109,9 @@ TEST(ShaderVariant, AFewObjectsWithoutMeshesAreTestedInAnUnrolledLoop) {
     std::string eight;
     for (int i = 0; i < 8; ++i) eight += "sphere ";
     EXPECT_EQ(featuresOfText(eight).unrolledObjects, 8u);
-    // A BVH, the all-features shader (any scene), a mesh (its walk) and tori
-    // alone (their code not kept for after the walk) keep the loop over the
-    // run-time count.
+    // A BVH, the all-features shader (any scene), a mesh among other
+    // objects (its walk) and tori alone (their code not kept for after the
+    // walk) keep the loop over the run-time count.
     const std::string nine = eight + "sphere";
     EXPECT_TRUE(featuresOfText(nine).objectBvh);
     EXPECT_EQ(featuresOfText(nine).unrolledObjects, 0u);
@@ -129,6 +129,10 @@ TEST(ShaderVariant, AFewObjectsWithoutMeshesAreTestedInAnUnrolledLoop) {
     EXPECT_FALSE(withMeshes("tetrahedron").objectBvh);
     EXPECT_FALSE(featuresOfText("sphere cube", 1, true).objectBvh);
     EXPECT_EQ(featuresOfText("torus torus").unrolledObjects, 0u);
+    // One object alone is its test, whatever its shape: no loop, its code once.
+    EXPECT_EQ(featuresOfText("torus").unrolledObjects, 1u);
+    EXPECT_EQ(withMeshes("tetrahedron").unrolledObjects, 1u);
+    EXPECT_EQ(withMeshes("tetrahedron").objectKinds, std::vector<std::uint32_t>{KIND_MESH});
     // Tori beside other shapes, and CSG objects, are kept for after the
     // walk: unrolled, they only go on that list, their code compiled once.
     EXPECT_EQ(featuresOfText("sphere torus").unrolledObjects, 2u);
