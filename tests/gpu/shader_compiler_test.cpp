@@ -158,7 +158,7 @@ void writeAged(const fs::path& path, std::size_t bytes, std::chrono::hours age) 
 TEST(SpirvCache, PruningRemovesTheEntriesUsedLeastRecentlyAndNothingElse) {
     const test::TempFolder scratch("vkray-cache");
     const fs::path dir = scratch.path();
-    // Five entries of 1000 bytes, e0 the oldest; and files that are not entries.
+    // Five entries of 1000 bytes, the first the oldest; and files that are not entries.
     const std::vector<std::string> entries = {"000000000000000a.spv", "000000000000000b.spv",
                                               "000000000000000c.spv", "000000000000000d.spv",
                                               "000000000000000e.spv"};
