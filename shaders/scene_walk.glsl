@@ -199,11 +199,13 @@ void testTriangle(uint index, bool feeler, inout MeshVisit visit, inout Hit hit,
 // tested once: for a ray (feeler false, tMax infinite) `hit` ends as the
 // closest hit; for a shadow feeler (tMax = the light's distance) `through`
 // ends as the product of the transparencies of the objects met, the walk
-// stopping at 0. Lavapipe inlines every function: the walk calls
+// stopping at 0. A feeler's `hint` (VKRAY_FEELER_HINTS) is an entry of the
+// object BVH's order to test first (NO_ENTRY: none); hit.entry ends as the
+// entry that stopped it. Lavapipe inlines every function: the walk calls
 // testObject once for the shapes it does not keep (compiled VKRAY_OBJECTS
 // times when the loop is unrolled, each with one shape's code:
 // shader_variant.cpp) and once for those it keeps (testKeptObjects).
-void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hit,
+void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, uint hint, out Hit hit,
                out float through) {
     hit.t = tMax;
     hit.object = -1;
@@ -213,6 +215,9 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
 #if VKRAY_MESH_INSTANCES
     hit.triangle = NO_TRIANGLE;
     hit.barycentric = rvec3(0.0);
+#endif
+#if VKRAY_FEELER_HINTS
+    hit.entry = NO_ENTRY;
 #endif
     through = 1.0;
 #if VKRAY_KEPT_OBJECTS
@@ -229,6 +234,21 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
     // putting an end mark and its root on the stack: the same loops then walk
     // its BVH, the leaves' triangles tested, until the mark comes off.
     uint leafFirst = frame.counts.z, leafCount = frame.counts.w;
+#if VKRAY_FEELER_HINTS
+    // A feeler's first turn tests its hint's entry, where it would otherwise
+    // test nothing (and run the leaf's loop all the same): the host asks for
+    // hints only in scenes without unbounded objects, whose tests take that
+    // turn. Testing an opaque object twice does not change whether a feeler
+    // gets through; a transparent one is passed over, lest its transparency
+    // count twice, and so is one whose shape waits on the list of kept
+    // objects. So the hint, from another invocation, may be anything: only
+    // an entry of the BVH is taken.
+    bool hinting = feeler && hint < frame.counts.z;
+    if (hinting) {
+        leafFirst = hint;
+        leafCount = 1u;
+    }
+#endif
     rvec3 invD = 1.0 / direction;
 #if VKRAY_MESH_INSTANCES
     // The objects' path, a leaf's meshes, a mesh's end mark and its path.
@@ -268,6 +288,9 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
         uint i = leafFirst;
         for (; i < leafFirst + objects && through > 0.0 && keptObjectsHaveRoom(); ++i) {
             uint object = objectAt(i), kind = objectShape(object).x;
+#if VKRAY_FEELER_HINTS
+            if (hinting && (objectShape(object).w != 0u || among(KEPT_SHAPES, kind))) continue;
+#endif
 #if VKRAY_MESH_INSTANCES
             if (kind == KIND_MESH) {
                 stack[top] = object;
@@ -276,7 +299,13 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
             }
 #endif
             testOrKeepObject(object, kind, WALK_SHAPES, origin, direction, feeler, hit, through);
+#if VKRAY_FEELER_HINTS
+            if (through == 0.0) hit.entry = i;
+#endif
         }
+#if VKRAY_FEELER_HINTS
+        hinting = false;
+#endif
 #if VKRAY_KEPT_OBJECTS
         if (i < leafFirst + objects && through > 0.0) {
             // The list of kept objects is full: the rest of this leaf after their tests.
@@ -293,6 +322,7 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, out Hit hi
             testTriangle(i, feeler, visit, hit, through);
 #endif
         leafCount = 0u;
+        if (!(through > 0.0)) top = 0u;  // a stopped feeler looks for no next leaf
         bool walking = false;  // `children` is the first of the two to test next
         uint children = 0u;
         while (true) {

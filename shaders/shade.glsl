@@ -289,6 +289,20 @@ void feelerToward(uint i, Surface s, out rvec3 origin, out rvec3 direction, out 
 // scene in one place only (BENCHMARKS.md, ninth round).
 #define VKRAY_FEELER_LOOP (VKRAY_SHADOWS && VKRAY_OBJECTS > 0 && !VKRAY_CSG)
 
+#if VKRAY_FEELER_HINTS
+// The hints of feelers' BVH walks (walkScene): the entry of the object that
+// stopped the last feeler toward each of the first HINT_LIGHTS lights, kept
+// for each of the two rows of lanes of an 8-lane vector (a 4x2 block of
+// pixels). llvmpipe runs a workgroup's vectors one after the other, so a
+// feeler's hint is what stopped the feeler toward the same light two pixels
+// above (rows of an 8x8 workgroup, trace.comp's main), most often the wall
+// whose shadow both lie in; on a GPU that runs the vectors at once it is
+// another nearby invocation's, or anything: whether a feeler gets through
+// never depends on its hint, only how long its walk takes.
+const uint HINT_LIGHTS = 4u;
+shared uint walkHints[2u * gl_WorkGroupSize.x * HINT_LIGHTS];
+#endif
+
 // This invocation's samples, from where `ray` (GpuRayProgress) says an
 // earlier dispatch left them, until they are done or loopTurns has passed
 // `budget`. Each sample is Hill's shade() down to maxRecursionDepth, its
@@ -322,6 +336,9 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
     uint light = lightCount;
     // Sample 0's primary hit (the AOVs), for main() to write.
     aovFound = false;
+#if VKRAY_FEELER_HINTS
+    uint hintLane = gl_LocalInvocationID.x + (gl_LocalInvocationID.y & 1u) * gl_WorkGroupSize.x;
+#endif
     while (true) {
         ++loopTurns;
         // This turn's walk: the feeler toward the next facing light, or the next ray.
@@ -349,7 +366,22 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
 
         Hit hit;
         float through;
-        walkScene(walkOrigin, walkDirection, walkMax, feeler, hit, through);
+#if VKRAY_FEELER_HINTS
+        bool hinted = feeler && light < HINT_LIGHTS;
+        uint hintSlot = hintLane * HINT_LIGHTS + min(light, HINT_LIGHTS - 1u);
+        uint hint = hinted ? walkHints[hintSlot] : NO_ENTRY;
+#ifdef VKRAY_ARBITRARY_HINTS
+        // A test hook (variant_equivalence_test.cpp): a number from the
+        // pixel and the light, an entry of any object or none, in place of
+        // the hint: the picture must not change.
+        hint = ((rayPixel.x * 73856093u) ^ (rayPixel.y * 19349663u) ^ (light * 83492791u)) %
+               (frame.counts.z + 4u);
+#endif
+        walkScene(walkOrigin, walkDirection, walkMax, feeler, hint, hit, through);
+        if (hinted) walkHints[hintSlot] = hit.entry;
+#else
+        walkScene(walkOrigin, walkDirection, walkMax, feeler, NO_ENTRY, hit, through);
+#endif
 #if VKRAY_STRESS_OUTPUT
         stressRecordWalk(firstPixel, sampleIndex, task.level, feeler, light, walkOrigin,
                          walkDirection, hit);
@@ -405,7 +437,8 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
                     feelerToward(light, s, feelerOrigin, feelerDirection, feelerMax);
                     Hit blocker;
                     float through;
-                    walkScene(feelerOrigin, feelerDirection, feelerMax, true, blocker, through);
+                    walkScene(feelerOrigin, feelerDirection, feelerMax, true, NO_ENTRY, blocker,
+                              through);
 #if VKRAY_STRESS_OUTPUT
                     stressRecordWalk(firstPixel, sampleIndex, task.level, true, light, feelerOrigin,
                                      feelerDirection, blocker);

@@ -8,7 +8,9 @@
 // _MESH and VKRAY_CSG are 1 for the shapes present; VKRAY_SHADOWS,
 // _REFLECTION, _REFRACTION, _TEXTURES, _PIXMAPS and _ANTIALIAS add the parts
 // of Whitted shading the scene uses;
-// VKRAY_OBJECT_BVH finds objects through a BVH instead of testing each;
+// VKRAY_OBJECT_BVH finds objects through a BVH instead of testing each, and
+// VKRAY_FEELER_HINTS has its feelers' walks first test what stopped a feeler
+// nearby (shade.glsl);
 // VKRAY_BLOCKS (--block > 1) fills each ray's block of pixels;
 // VKRAY_DEBUG_PIXEL (for `vkray pixel`) also records every step of the one
 // ray the host dispatches into the debug buffer; VKRAY_STRESS_OUTPUT (for
@@ -187,8 +189,14 @@ struct Hit {
     uint triangle;
     rvec3 barycentric;
 #endif
+#if VKRAY_FEELER_HINTS
+    // A feeler's: the BVH walk's entry (objectAt) of the object that
+    // stopped it, the hint for a feeler nearby (NO_ENTRY: none).
+    uint entry;
+#endif
 };
 const uint NO_TRIANGLE = 0xFFFFFFFFu;
+const uint NO_ENTRY = 0xFFFFFFFFu;
 
 // Sets of shapes (bit KIND_* set) that a call of intersectObject may meet.
 const uint ALL_SHAPES = 0xFFFFFFFFu;

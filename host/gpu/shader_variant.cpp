@@ -70,6 +70,11 @@ bool keepsTori(const ShaderFeatures& features) {
                              k[KIND_TAPERED_CYLINDER] || k[KIND_MESH]);
 }
 
+bool hintsFeelers(const ShaderFeatures& features) {
+    return features.has(Shading::Shadows) && features.objectBvh && !features.unboundedObjects &&
+           !features.stressOutput && !features.debugPixel;
+}
+
 ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bool allFeatures) {
     ShaderFeatures features;
     features.aovs = settings.aovs;
@@ -86,7 +91,9 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
     std::size_t bounded = 0;
     bool meshObjects = false;
     for (const SceneObject& object : scene.objects) {
-        bounded += worldBounds(object, scene).finite() ? 1 : 0;
+        const Aabb box = worldBounds(object, scene);
+        bounded += box.finite() ? 1 : 0;
+        features.unboundedObjects = features.unboundedObjects || (!box.empty() && !box.finite());
         meshObjects = meshObjects || gpuKindOf(object.type) == KIND_MESH;
     }
     // Mesh objects go through the BVH however few the objects: their walks
@@ -128,6 +135,7 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines) {
     defines.emplace_back("VKRAY_DEBUG_PIXEL", flag(features.debugPixel));
     defines.emplace_back("VKRAY_STRESS_OUTPUT", flag(features.stressOutput));
     defines.emplace_back("VKRAY_KEEP_TORI", flag(keepsTori(features)));
+    defines.emplace_back("VKRAY_FEELER_HINTS", flag(hintsFeelers(features)));
     defines.emplace_back("VKRAY_OBJECTS", std::to_string(features.unrolledObjects));
     if (features.unrolledObjects > 0) {
         std::string kinds;
@@ -148,7 +156,8 @@ std::vector<std::string> variantFlags() {
     for (const char* other :
          {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_BLOCKS", "VKRAY_AOVS", "VKRAY_DEBUG_PIXEL",
           "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET", "VKRAY_PRECISION_NAIVE",
-          "VKRAY_PRECISION_FP64", "VKRAY_KEEP_TORI", "VKRAY_OBJECTS"})
+          "VKRAY_PRECISION_FP64", "VKRAY_KEEP_TORI", "VKRAY_FEELER_HINTS",
+          "VKRAY_OBJECTS"})
         flags.push_back(other);
     return flags;
 }

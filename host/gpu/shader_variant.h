@@ -63,6 +63,7 @@ struct ShaderFeatures {
     std::array<bool, kGpuShading.size()> shading{};  // indexed by Shading
     bool lights = true;         // the scene has lights (without, no light code: VKRAY_LIGHTS 0)
     bool objectBvh = false;     // objects found through a BVH
+    bool unboundedObjects = false;  // the scene has objects without a box (planes)
     bool blocks = false;        // --block > 1: each ray fills a block of pixels (VKRAY_BLOCKS)
     bool aovs = true;           // each pixel's depth and normal are written (VKRAY_AOVS)
     bool debugPixel = false;    // `vkray pixel`: the shader writes a trace record
@@ -86,6 +87,13 @@ struct ShaderFeatures {
 // alone, which would pay the list for nothing.
 bool keepsTori(const ShaderFeatures& features);
 
+// Whether a feeler's BVH walk first tests what stopped the feeler toward the
+// same light two pixels away (VKRAY_FEELER_HINTS): with shadows, an object
+// BVH and no unbounded objects, whose tests would take the turn the hint
+// fills; not in the stress and debug records, which count each walk's tests
+// as the CPU reference makes them.
+bool hintsFeelers(const ShaderFeatures& features);
+
 // Whether each invocation finishes its pixel in one dispatch: one ray a pixel
 // (its feelers included), no secondary rays, one sample. Its rays never
 // pause, so the variant keeps no progress between dispatches (trace.comp's
@@ -103,7 +111,7 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines = 
 
 // Every flag a variant defines, 0 or 1: the shapes, the shading features,
 // VKRAY_LIGHTS, VKRAY_OBJECT_BVH, VKRAY_BLOCKS, VKRAY_AOVS, VKRAY_DEBUG_PIXEL,
-// VKRAY_STRESS_OUTPUT, the
+// VKRAY_STRESS_OUTPUT, VKRAY_KEEP_TORI, VKRAY_FEELER_HINTS, the
 // test hook VKRAY_FAULT_NO_OFFSET and the precision modes' two; and the one
 // count, VKRAY_OBJECTS. The one list; shaders/variant_flags.glsl checks each
 // is defined.

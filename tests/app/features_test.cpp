@@ -113,6 +113,17 @@ TEST_F(Features, MeshSceneBindsMeshAndBvhBuffers) {
         << run.output;
 }
 
+TEST_F(Features, FeelersTakeHintsInABvhWithoutPlanes) {
+    // tests/data/shadow_hints.sdl: 14 bounded objects, three lights, no plane.
+    RunResult run = vkray("features " VKRAY_SOURCE_DIR "/tests/data/shadow_hints.sdl");
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_EQ(field(run.output, "shadows"),
+              "yes (3 lights, 14 objects); each feeler's walk first tests what stopped the "
+              "feeler toward the same light two pixels above");
+    EXPECT_NE(field(run.output, "defines").find("VKRAY_FEELER_HINTS=1"), std::string::npos)
+        << run.output;
+}
+
 TEST_F(Features, ALoneObjectIsTestedAloneWhateverItsShape) {
     // A torus or a mesh among others keeps the loop over the run-time count;
     // alone, its test is the walk (no loop, its code once).

@@ -168,6 +168,26 @@ TEST(ShaderVariant, ShadowsWhereAFeelerCanMeetAnObject) {
     EXPECT_TRUE(hasDefine(featuresOfText("light 1 2 3 1 1 1 sphere cube"), "VKRAY_SHADOWS"));
 }
 
+// Feelers take hints where they walk a BVH and no unbounded object (a plane)
+// takes the first turn of each walk; the stress and debug records count
+// each walk's tests as the CPU reference makes them, so they go without.
+TEST(ShaderVariant, FeelersTakeHintsInABvhWithoutUnboundedObjects) {
+    const std::string lit = "light 1 2 3 1 1 1 ", nine = "sphere sphere sphere cube cube cube cone cone cone ";
+    EXPECT_TRUE(hintsFeelers(featuresOfText(lit + nine)));
+    EXPECT_TRUE(hasDefine(featuresOfText(lit + nine), "VKRAY_FEELER_HINTS"));
+    EXPECT_FALSE(hintsFeelers(featuresOfText(lit + nine + "plane")));
+    EXPECT_FALSE(hintsFeelers(featuresOfText(nine)));        // no light, no feelers
+    EXPECT_FALSE(hintsFeelers(featuresOfText(lit + "sphere cube")));  // no BVH
+    ShaderFeatures stress = featuresOfText(lit + nine);
+    stress.stressOutput = true;
+    EXPECT_FALSE(hintsFeelers(stress));
+    ShaderFeatures debug = featuresOfText(lit + nine);
+    debug.debugPixel = true;
+    EXPECT_FALSE(hintsFeelers(debug));
+    // The all-features variant of such a scene takes them too.
+    EXPECT_TRUE(hintsFeelers(featuresOfText(lit + nine, 1, true)));
+}
+
 // A scene without lights has no light code and binds no lights; a lit
 // lone plane has the light code but no feelers.
 TEST(ShaderVariant, LightCodeOnlyWhereTheSceneHasLights) {

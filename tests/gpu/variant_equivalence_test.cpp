@@ -37,7 +37,7 @@ std::vector<std::string> projectScenes() {
 }
 
 // tests/data's scenes that render (the others there are meshes and outlines).
-const char* const kDataScenes[] = {"gallery.dat", "kitchen.dat", "tower.dat"};
+const char* const kDataScenes[] = {"gallery.dat", "kitchen.dat", "shadow_hints.sdl", "tower.dat"};
 // The corpus's scenes, by name: the list of tests must not depend on whether
 // the corpus is there (hlArch.dat is an outline that castle.dat extrudes).
 const char* const kCorpusScenes[] = {"bookScene.dat", "castle.dat", "hlScene1.dat"};
@@ -132,6 +132,27 @@ INSTANTIATE_TEST_SUITE_P(TestData, SpecialisedVsAllFeatures, ::testing::ValuesIn
 // Skipped without VKRAY_SDL_CORPUS.
 INSTANTIATE_TEST_SUITE_P(Corpus, SpecialisedVsAllFeatures, ::testing::ValuesIn(corpusCases()),
                          caseName);
+
+// A feeler's hint (VKRAY_FEELER_HINTS) changes how long its walk takes,
+// never whether it gets through: the same bytes with every hint replaced by
+// a number made from the pixel and the light (VKRAY_ARBITRARY_HINTS, a test
+// hook), the entry of any object (the half-transparent cube's, whose
+// transparency must not count twice, the torus's, which waits on the list
+// of kept objects, the mesh's) or none. The scene's feelers meet all three.
+TEST(FeelerHints, ThePictureDoesNotDependOnThem) {
+    const Scene scene = loadScene(test::kDataDir + "/shadow_hints.sdl", {}, nullptr);
+    const RenderSettings settings{192, 144, 1, 1};
+    ASSERT_TRUE(gpu::hintsFeelers(gpu::featuresOf(scene, settings, false)));
+    const CameraBasis basis = makeCameraBasis(*scene.camera, settings.width, settings.height);
+    gpu::GpuTracer hinted(test::gpuContext(), {.shaderDirectory = test::kShaderDir});
+    gpu::GpuTracer arbitrary(test::gpuContext(),
+                             {.shaderDirectory = test::kShaderDir,
+                              .userDefines = {{"VKRAY_ARBITRARY_HINTS", "1"}}});
+    const Frame a = hinted.render(scene, basis, settings);
+    const Frame b = arbitrary.render(scene, basis, settings);
+    EXPECT_EQ(differingValues(a.color, b.color), 0u) << "colour bits differ";
+    EXPECT_EQ(a.id, b.id);
+}
 
 // The Binding decorations of a SPIR-V module (OpDecorate %id Binding n).
 std::set<std::uint32_t> spirvBindings(const std::vector<std::uint32_t>& spirv) {
