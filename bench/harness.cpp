@@ -433,7 +433,8 @@ int main(int argc, char** argv) {
         std::printf("Embree: not built (CMake did not find Embree 3; apt install libembree-dev)\n");
 #endif
         std::printf(
-            "%dx%d primary rays, best of %d runs; CPU reference and Embree on %d threads; "
+            "%dx%d primary rays, best of %d runs (the GPU's and the CPU reference's in turn); "
+            "CPU reference and Embree on %d threads; "
             "GPU tiles %d px, shaders %s\n",
             o.width, o.height, o.repeat, o.threads,
             o.tile > 0 ? o.tile : gpu::defaultTileSide(device), shaders.c_str());
@@ -474,58 +475,69 @@ int main(int argc, char** argv) {
             // GPU: the dispatch loop (wall clock and CPU time), as GpuTracer
             // measures it. llvmpipe JIT-compiles a pipeline at its first
             // dispatch: a small warm-up render takes that out of the timed ones.
-            const auto gpuTiming = [&](gpu::GpuTracer& tracer, bool all, const RenderSettings& size,
-                                       int repeat, Frame* keep) {
-                const CameraBasis sized = makeCameraBasis(camera, size.width, size.height);
+            const auto warmUp = [&](gpu::GpuTracer& tracer) {
                 tracer.render(scene, makeCameraBasis(camera, 64, 36), imageOf(64, 36));
-                Timing best;
-                for (int r = 0; r < repeat; ++r) {
-                    gpu::GpuRenderStats stats;
-                    Frame frame = tracer.render(scene, sized, size, &stats);
-                    best.keepBest({stats.renderSeconds, stats.renderCpuSeconds});
-                    row.variant = all ? row.variant : stats.variant;
-                    if (keep) {
-                        char share[64];
-                        std::snprintf(share, sizeof share, "%.1f %% (%zu of %zu)",
-                                      100.0 * double(stats.groupsTraced) / double(stats.groups),
-                                      stats.groupsTraced, stats.groups);
-                        row.groupsTraced = share;
-                    }
-                    if (keep && stats.deviceSeconds &&
-                        (!row.gpuDevice || *stats.deviceSeconds < *row.gpuDevice)) {
-                        row.gpuDevice = stats.deviceSeconds;
-                        row.gpuDeviceWall = stats.renderSeconds;
-                    }
-                    if (keep && r == 0) *keep = std::move(frame);
-                }
-                return best;
             };
-            Frame gpuFrame;
-            row.time[kGpu] = gpuTiming(specialised, false, settings, o.repeat, &gpuFrame);
+            // One timed render; `keep`: the specialised variant's full-size
+            // render, whose image, share of workgroups and device time the
+            // tables show.
+            const auto gpuRun = [&](gpu::GpuTracer& tracer, bool all, const RenderSettings& size,
+                                    Timing& best, Frame* keep) {
+                gpu::GpuRenderStats stats;
+                Frame frame = tracer.render(
+                    scene, makeCameraBasis(camera, size.width, size.height), size, &stats);
+                best.keepBest({stats.renderSeconds, stats.renderCpuSeconds});
+                row.variant = all ? row.variant : stats.variant;
+                if (!keep) return;
+                char share[64];
+                std::snprintf(share, sizeof share, "%.1f %% (%zu of %zu)",
+                              100.0 * double(stats.groupsTraced) / double(stats.groups),
+                              stats.groupsTraced, stats.groups);
+                row.groupsTraced = share;
+                if (stats.deviceSeconds &&
+                    (!row.gpuDevice || *stats.deviceSeconds < *row.gpuDevice)) {
+                    row.gpuDevice = stats.deviceSeconds;
+                    row.gpuDeviceWall = stats.renderSeconds;
+                }
+                if (keep->pixelCount() == 0) *keep = std::move(frame);
+            };
+            // The specialised variant and the CPU reference take turns, each
+            // run of one beside a run of the other, so that a slow spell of
+            // the machine (a shared VM's) falls on both and their ratio holds.
+            Frame gpuFrame, cpuFrame;
+            Timing gpuBest, cpuBest;
+            warmUp(specialised);
+            for (int r = 0; r < o.repeat; ++r) {
+                gpuRun(specialised, false, settings, gpuBest, &gpuFrame);
+                if (o.cpu)
+                    cpuBest.keepBest(timed([&] {
+                        cpuFrame = reference::render(scene, basis, settings, {o.threads});
+                    }));
+            }
+            row.time[kGpu] = gpuBest;
             // The all-features variant is tens of times slower on lavapipe
             // (BENCHMARKS.md): --all-size times it on a smaller image of the
             // same view, beside the specialised variant on that image.
             if (o.all) {
                 const RenderSettings small = imageOf(o.allWidth, o.allHeight);
-                row.time[kAllFeatures] = gpuTiming(allFeatures, true, small, o.repeat, nullptr);
-                row.smallGpu = small.width == o.width && small.height == o.height
-                                   ? row.time[kGpu]
-                                   : gpuTiming(specialised, false, small, o.repeat, nullptr);
+                const bool sameSize = small.width == o.width && small.height == o.height;
+                Timing allBest, smallBest;
+                warmUp(allFeatures);
+                for (int r = 0; r < o.repeat; ++r) {
+                    gpuRun(allFeatures, true, small, allBest, nullptr);
+                    if (!sameSize) gpuRun(specialised, false, small, smallBest, nullptr);
+                }
+                row.time[kAllFeatures] = allBest;
+                row.smallGpu = sameSize ? row.time[kGpu] : smallBest;
             }
 
             const Timing bvh = timed([&] { buildObjectBvh(scene); });
             char text[96];
             std::snprintf(text, sizeof text, "object BVH %.3f s", bvh.wall);
             row.builds = text;
-            Frame cpuFrame;
             if (o.cpu) {
-                Timing best;
-                for (int r = 0; r < o.repeat; ++r)
-                    best.keepBest(timed([&] {
-                        cpuFrame = reference::render(scene, basis, settings, {o.threads});
-                    }));
-                best.cpu = std::max(best.cpu - frameCpu(o.width, o.height), 1e-9);
-                row.time[kCpuReference] = best;
+                cpuBest.cpu = std::max(cpuBest.cpu - frameCpu(o.width, o.height), 1e-9);
+                row.time[kCpuReference] = cpuBest;
                 std::snprintf(text, sizeof text, "%.2f %%",
                               agreement(std::vector<int>(gpuFrame.id.begin(), gpuFrame.id.end()),
                                         cpuFrame.id));
