@@ -484,8 +484,8 @@ int main(int argc, char** argv) {
             const auto gpuRun = [&](gpu::GpuTracer& tracer, bool all, const RenderSettings& size,
                                     Timing& best, Frame* keep) {
                 gpu::GpuRenderStats stats;
-                Frame frame = tracer.render(
-                    scene, makeCameraBasis(camera, size.width, size.height), size, &stats);
+                Frame frame = tracer.render(scene, makeCameraBasis(camera, size.width, size.height),
+                                            size, &stats);
                 best.keepBest({stats.renderSeconds, stats.renderCpuSeconds});
                 row.variant = all ? row.variant : stats.variant;
                 if (!keep) return;

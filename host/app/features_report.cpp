@@ -185,8 +185,9 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
         shadows = "yes (" + count(scene.lights.size(), "light") + ", " +
                   count(scene.objects.size(), "object") + ")";
     if (gpu::hintsFeelers(features))
-        shadows += "; each feeler's walk first tests what stopped the feeler toward the same "
-                   "light two pixels above";
+        shadows +=
+            "; each feeler's walk first tests what stopped the feeler toward the same "
+            "light two pixels above";
     out << "shadows: " << shadows << "\n";
     out << "reflection: "
         << secondaryRays(needed.has(gpu::Shading::Reflection), scene, "reflectivity",

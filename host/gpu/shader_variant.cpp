@@ -71,7 +71,7 @@ bool keepsTori(const ShaderFeatures& features) {
 }
 
 bool hintsFeelers(const ShaderFeatures& features) {
-    return features.has(Shading::Shadows) && features.objectBvh && !features.unboundedObjects &&
+    return features.has(Shading::Shadows) && features.objectBvh && !features.unbounded &&
            !features.stressOutput && !features.debugPixel;
 }
 
@@ -93,7 +93,7 @@ ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bo
     for (const SceneObject& object : scene.objects) {
         const Aabb box = worldBounds(object, scene);
         bounded += box.finite() ? 1 : 0;
-        features.unboundedObjects = features.unboundedObjects || (!box.empty() && !box.finite());
+        features.unbounded = features.unbounded || (!box.empty() && !box.finite());
         meshObjects = meshObjects || gpuKindOf(object.type) == KIND_MESH;
     }
     // Mesh objects go through the BVH however few the objects: their walks
@@ -156,8 +156,7 @@ std::vector<std::string> variantFlags() {
     for (const char* other :
          {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_BLOCKS", "VKRAY_AOVS", "VKRAY_DEBUG_PIXEL",
           "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET", "VKRAY_PRECISION_NAIVE",
-          "VKRAY_PRECISION_FP64", "VKRAY_KEEP_TORI", "VKRAY_FEELER_HINTS",
-          "VKRAY_OBJECTS"})
+          "VKRAY_PRECISION_FP64", "VKRAY_KEEP_TORI", "VKRAY_FEELER_HINTS", "VKRAY_OBJECTS"})
         flags.push_back(other);
     return flags;
 }

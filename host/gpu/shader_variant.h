@@ -63,7 +63,7 @@ struct ShaderFeatures {
     std::array<bool, kGpuShading.size()> shading{};  // indexed by Shading
     bool lights = true;         // the scene has lights (without, no light code: VKRAY_LIGHTS 0)
     bool objectBvh = false;     // objects found through a BVH
-    bool unboundedObjects = false;  // the scene has objects without a box (planes)
+    bool unbounded = false;     // the scene has objects without a box (planes)
     bool blocks = false;        // --block > 1: each ray fills a block of pixels (VKRAY_BLOCKS)
     bool aovs = true;           // each pixel's depth and normal are written (VKRAY_AOVS)
     bool debugPixel = false;    // `vkray pixel`: the shader writes a trace record

@@ -172,11 +172,12 @@ TEST(ShaderVariant, ShadowsWhereAFeelerCanMeetAnObject) {
 // takes the first turn of each walk; the stress and debug records count
 // each walk's tests as the CPU reference makes them, so they go without.
 TEST(ShaderVariant, FeelersTakeHintsInABvhWithoutUnboundedObjects) {
-    const std::string lit = "light 1 2 3 1 1 1 ", nine = "sphere sphere sphere cube cube cube cone cone cone ";
+    const std::string lit = "light 1 2 3 1 1 1 ",
+                      nine = "sphere sphere sphere cube cube cube cone cone cone ";
     EXPECT_TRUE(hintsFeelers(featuresOfText(lit + nine)));
     EXPECT_TRUE(hasDefine(featuresOfText(lit + nine), "VKRAY_FEELER_HINTS"));
     EXPECT_FALSE(hintsFeelers(featuresOfText(lit + nine + "plane")));
-    EXPECT_FALSE(hintsFeelers(featuresOfText(nine)));        // no light, no feelers
+    EXPECT_FALSE(hintsFeelers(featuresOfText(nine)));                 // no light, no feelers
     EXPECT_FALSE(hintsFeelers(featuresOfText(lit + "sphere cube")));  // no BVH
     ShaderFeatures stress = featuresOfText(lit + nine);
     stress.stressOutput = true;

@@ -145,9 +145,8 @@ TEST(FeelerHints, ThePictureDoesNotDependOnThem) {
     ASSERT_TRUE(gpu::hintsFeelers(gpu::featuresOf(scene, settings, false)));
     const CameraBasis basis = makeCameraBasis(*scene.camera, settings.width, settings.height);
     gpu::GpuTracer hinted(test::gpuContext(), {.shaderDirectory = test::kShaderDir});
-    gpu::GpuTracer arbitrary(test::gpuContext(),
-                             {.shaderDirectory = test::kShaderDir,
-                              .userDefines = {{"VKRAY_ARBITRARY_HINTS", "1"}}});
+    gpu::GpuTracer arbitrary(test::gpuContext(), {.shaderDirectory = test::kShaderDir,
+                                                  .userDefines = {{"VKRAY_ARBITRARY_HINTS", "1"}}});
     const Frame a = hinted.render(scene, basis, settings);
     const Frame b = arbitrary.render(scene, basis, settings);
     EXPECT_EQ(differingValues(a.color, b.color), 0u) << "colour bits differ";
