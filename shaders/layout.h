@@ -172,6 +172,11 @@ struct GpuTriangle {
     vec4 p0, p1, p2;  // xyz positions (object space)
     vec4 n0, n1, n2;  // xyz unit normals at the corners, interpolated
 };
+// A mesh object's triangle placed in world space (VKRAY_WORLD_TRIANGLES):
+// a GpuTriangle whose corners are M p; p0.w is the object's index and p1.w
+// the triangle's own GpuTriangle (its normals), as uint bits. These come
+// first in the triangle array, in the object BVH's leaf order.
+
 
 // CSG trees in post order: a leaf pushes its primitive's inside-spans, an
 // operator combines the two lists on top. Primitives are objects stored

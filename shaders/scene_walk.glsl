@@ -56,7 +56,7 @@ void testObject(uint index, uint kind, uint shapes, rvec3 origin, rvec3 directio
         hit.surface = surface;
         hit.genericNormal = n;
         hit.geometricNormal = geometric;
-#if VKRAY_MESH_INSTANCES
+#if VKRAY_WALK_TRIANGLES
         hit.triangle = NO_TRIANGLE;
 #endif
     }
@@ -195,6 +195,41 @@ void testTriangle(uint index, bool feeler, inout MeshVisit visit, inout Hit hit,
 }
 #endif
 
+#if VKRAY_WORLD_TRIANGLES
+// Tests world triangle `index` (layout.h) for a scene walk, `sheared` the
+// walk's ray, as testTriangle a mesh's: an object's nearest triangle is its
+// hit, which replaces another object's as testObject's would. The host
+// places only opaque meshes' triangles in world space, so a feeler that
+// meets one is stopped.
+void testWorldTriangle(uint index, ShearedRay sheared, bool feeler, inout Hit hit,
+                       inout float through) {
+    int first = int(index * TRIANGLE_TEXELS);
+    vec4 p0 = texelAsVec4(imageLoad(triangleTexels, first));
+    vec4 p1 = texelAsVec4(imageLoad(triangleTexels, first + 1));
+    vec4 p2 = texelAsVec4(imageLoad(triangleTexels, first + 2));
+    real t;
+    rvec3 barycentric;
+    if (!intersectTriangle(sheared, rvec3(p0.xyz), rvec3(p1.xyz), rvec3(p2.xyz), T_MIN,
+                           reach(hit.t, feeler), t, barycentric))
+        return;
+#if VKRAY_SHADOWS
+    if (feeler) {
+        through = 0.0;
+        return;
+    }
+#endif
+    uint object = floatBitsToUint(p0.w);
+    bool again = hit.object == int(object);
+    if (again ? t < hit.t : replaces(object, t, hit)) {
+        hit.t = t;
+        hit.object = int(object);
+        hit.surface = object;
+        hit.triangle = floatBitsToUint(p1.w);
+        hit.barycentric = barycentric;
+    }
+}
+#endif
+
 // Every object the ray origin + t direction may meet in (0, tMax), each
 // tested once: for a ray (feeler false, tMax infinite) `hit` ends as the
 // closest hit; for a shadow feeler (tMax = the light's distance) `through`
@@ -212,7 +247,7 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, uint hint,
     hit.surface = 0u;
     hit.genericNormal = rvec3(0.0);
     hit.geometricNormal = rvec3(0.0);
-#if VKRAY_MESH_INSTANCES
+#if VKRAY_WALK_TRIANGLES
     hit.triangle = NO_TRIANGLE;
     hit.barycentric = rvec3(0.0);
 #endif
@@ -262,7 +297,16 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, uint hint,
     bool entering = false;
 #else
     const uint STACK_SIZE = BVH_STACK_SIZE;
+#if VKRAY_WORLD_TRIANGLES
+    // The leaves from the index's end on (the objects', then the unbounded
+    // ones) hold triangles in world space (host: packScene); no mesh object
+    // is left among the objects.
+    const uint WALK_SHAPES = ALL_SHAPES & ~(1u << KIND_MESH);
+    uint triangleFirst = frame.counts.z + frame.counts.w;
+    ShearedRay sheared = shearRay(origin, direction);
+#else
     const uint WALK_SHAPES = ALL_SHAPES;
+#endif
 #endif
     uint stack[STACK_SIZE];  // nodes to visit (bvhNodeCode), with where the ray enters them
     real stackEnter[STACK_SIZE];
@@ -284,6 +328,8 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, uint hint,
         uint objects = leafCount;
 #if VKRAY_MESH_INSTANCES
         if (visit.inside) objects = 0u;
+#elif VKRAY_WORLD_TRIANGLES
+        if (leafFirst >= triangleFirst) objects = 0u;
 #endif
         uint i = leafFirst;
         for (; i < leafFirst + objects && through > 0.0 && keptObjectsHaveRoom(); ++i) {
@@ -320,6 +366,11 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, uint hint,
         for (uint i = visit.triangles + leafFirst;
              i < visit.triangles + leafFirst + triangles && !visit.leaving; ++i)
             testTriangle(i, feeler, visit, hit, through);
+#elif VKRAY_WORLD_TRIANGLES
+        uint triangles = leafCount - objects;
+        for (uint i = leafFirst - triangleFirst; i < leafFirst - triangleFirst + triangles &&
+                                                 through > 0.0; ++i)
+            testWorldTriangle(i, sheared, feeler, hit, through);
 #endif
         leafCount = 0u;
         if (!(through > 0.0)) top = 0u;  // a stopped feeler looks for no next leaf
@@ -445,7 +496,7 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, uint hint,
         paused = paused && through > 0.0;
     }
 #endif
-#if VKRAY_MESH_INSTANCES
+#if VKRAY_WALK_TRIANGLES
     // The normals of the mesh's hit triangle, as intersectMesh gives them.
     if (hit.triangle != NO_TRIANGLE)
         triangleNormals(hit.triangle, hit.barycentric, hit.genericNormal, hit.geometricNormal);

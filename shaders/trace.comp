@@ -141,7 +141,12 @@ real taperOf(uint index) {
 // reached, so that a nested walk costs in every object test of the leaves.
 // (The stress record counts each object's test, as the CPU reference's.)
 // The host packs the nodes to match (meshNodesWithObjects).
-#define VKRAY_MESH_INSTANCES (VKRAY_OBJECT_BVH && VKRAY_SHAPE_MESH && !VKRAY_STRESS_OUTPUT)
+// Where the host has placed every mesh object's triangles in the object BVH
+// in world space instead (VKRAY_WORLD_TRIANGLES), the walk has no mesh to enter.
+#define VKRAY_MESH_INSTANCES \
+    (VKRAY_OBJECT_BVH && VKRAY_SHAPE_MESH && !VKRAY_STRESS_OUTPUT && !VKRAY_WORLD_TRIANGLES)
+// A walk that meets triangles: a mesh's, or the world's.
+#define VKRAY_WALK_TRIANGLES (VKRAY_MESH_INSTANCES || VKRAY_WORLD_TRIANGLES)
 
 // Where an object's hits start along a ray.
 #if VKRAY_PRECISION_NAIVE
@@ -183,7 +188,7 @@ struct Hit {
     uint surface;        // the object whose surface was hit (a CSG primitive, or the object)
     rvec3 genericNormal;  // outward, in the generic space of `surface`
     rvec3 geometricNormal;  // the same, but a mesh's triangle's own instead of the interpolated
-#if VKRAY_MESH_INSTANCES
+#if VKRAY_WALK_TRIANGLES
     // A mesh's triangle met by the walk (NO_TRIANGLE: none), whose normals
     // the walk works out at its end, from the barycentric coordinates.
     uint triangle;

@@ -27,8 +27,8 @@
 #if !defined(VKRAY_PRECISION_NAIVE) || !defined(VKRAY_PRECISION_FP64) || !defined(VKRAY_FAULT_NO_OFFSET)
 #error "VKRAY_PRECISION_NAIVE, VKRAY_PRECISION_FP64 or VKRAY_FAULT_NO_OFFSET is not defined: the host defines every variant flag, 0 or 1"
 #endif
-#if !defined(VKRAY_KEEP_TORI) || !defined(VKRAY_FEELER_HINTS)
-#error "VKRAY_KEEP_TORI or VKRAY_FEELER_HINTS is not defined: the host defines every variant flag, 0 or 1"
+#if !defined(VKRAY_KEEP_TORI) || !defined(VKRAY_FEELER_HINTS) || !defined(VKRAY_WORLD_TRIANGLES)
+#error "VKRAY_KEEP_TORI, VKRAY_FEELER_HINTS or VKRAY_WORLD_TRIANGLES is not defined: the host defines every variant flag, 0 or 1"
 #endif
 #if !defined(VKRAY_OBJECTS)
 #error "VKRAY_OBJECTS is not defined: the host defines it, the object count of an unrolled walk or 0"

@@ -144,10 +144,24 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     if (scene.meshes.empty())
         out << "none\n";
     else
-        out << scene.meshes.size() << " (" << triangles << " triangles)\n";
+        out << scene.meshes.size() << " (" << triangles << " triangles)";
+    if (gpu::placesTrianglesInWorld(features)) {
+        std::size_t placed = 0;
+        for (const SceneObject& object : scene.objects)
+            if (!isBoolean(object.type) && object.mesh >= 0)
+                placed += scene.meshes.at(size_t(object.mesh))->triangles.size();
+        out << "; the mesh objects' " << placed
+            << " triangles in the object BVH, placed in world space";
+    } else if (!scene.meshes.empty() && gpu::meshNodesWithObjects(features)) {
+        out << "; each mesh walked in its own space (world space takes opaque meshes near the "
+               "eye, up to "
+            << gpu::kWorldTrianglesMax << " triangles, in the robust mode)";
+    }
+    if (!scene.meshes.empty()) out << "\n";
     out << "object BVH: " << (features.objectBvh ? "yes" : "no") << " (" << bounded
         << " bounded objects; more than " << gpu::kObjectBvhThreshold
-        << ", or two with a mesh, get one)";
+        << ", or two with a mesh, get one"
+        << (gpu::placesTrianglesInWorld(features) ? "; so do triangles in world space" : "") << ")";
     if (features.unrolledObjects == 1)
         out << "; the one object tested alone, with its shape's code only";
     else if (features.unrolledObjects > 1)

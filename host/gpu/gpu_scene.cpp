@@ -249,6 +249,64 @@ void packMeshes(const Scene& scene, GpuScene& packed) {
     }
 }
 
+// Places every mesh object's triangles in world space (layout.h, after
+// GpuTriangle; VKRAY_WORLD_TRIANGLES) at the front of packed.triangles, in
+// the leaf order of a BVH over them, the meshes' own triangles after them.
+// Returns that BVH joined to the objects' (which leaves the mesh objects
+// out), its leaves indexing from `first` on: the shader's triangleFirst.
+Bvh placeTrianglesInWorld(const Scene& scene, const Bvh& objects, std::uint32_t first,
+                          GpuScene& packed) {
+    std::vector<std::uint32_t> meshObjects;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        const SceneObject& object = scene.objects[i];
+        if (isBoolean(object.type) || gpuKindOf(object.type) != KIND_MESH) continue;
+        meshObjects.push_back(std::uint32_t(i));
+        count += scene.meshes.at(size_t(object.mesh))->triangles.size();
+    }
+    std::vector<GpuTriangle> world;
+    std::vector<Aabb> boxes;
+    world.reserve(count);
+    boxes.reserve(count);
+    for (const std::uint32_t i : meshObjects) {
+        const SceneObject& object = scene.objects[i];
+        const TriangleMesh& mesh = *scene.meshes[size_t(object.mesh)];
+        // Where packMeshes put this mesh's triangles, in its leaf order, once
+        // the world's go first.
+        const uint own = uint(count) + packed.meshes.at(size_t(object.mesh)).range.y;
+        for (std::size_t k = 0; k < mesh.bvh.order.size(); ++k) {
+            const TriangleMesh::Triangle& t = mesh.triangles[mesh.bvh.order[k]];
+            GpuTriangle g{};
+            vec4* corners[3] = {&g.p0, &g.p1, &g.p2};
+            Aabb box;  // of the corners as the shader gets them, rounded
+            for (int c = 0; c < 3; ++c) {
+                const glm::dvec4 p =
+                    object.worldFromObject * glm::dvec4(mesh.positions[t.position[c]], 1.0);
+                *corners[c] = toVec4(glm::dvec3(p));
+                box.grow(glm::dvec3(corners[c]->x, corners[c]->y, corners[c]->z));
+            }
+            g.p0.w = bitsAsFloat(i);
+            g.p1.w = bitsAsFloat(own + uint(k));
+            world.push_back(g);
+            boxes.push_back(box);
+        }
+    }
+    const Bvh triangles = buildBvh(boxes);
+    std::vector<GpuTriangle> placed;
+    placed.reserve(count + packed.triangles.size());
+    for (const std::uint32_t index : triangles.order) placed.push_back(world[index]);
+    placed.insert(placed.end(), packed.triangles.begin(), packed.triangles.end());
+    packed.triangles = std::move(placed);
+    for (GpuMesh& mesh : packed.meshes) mesh.range.y += uint(count);
+    Bvh joined = joinBvhs(objects, triangles, first);
+    // A walk keeps at most one node a level below the root.
+    if (joined.depth > int(BVH_STACK_SIZE) + 1)
+        throw Error(
+            "internal: the object BVH with the world's triangles is deeper than the "
+            "shader's stack");
+    return joined;
+}
+
 }  // namespace
 
 GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
@@ -294,13 +352,18 @@ GpuScene packScene(const Scene& scene, const ShaderFeatures& features) {
     }
 
     if (features.objectBvh) {
-        ObjectBvh objects = buildObjectBvh(scene);
-        packed.objectNodes = packBvh(objects.bvh);
+        const bool worldTriangles = placesTrianglesInWorld(features);
+        ObjectBvh objects =
+            buildObjectBvh(scene, worldTriangles ? MeshObjects::Apart : MeshObjects::In);
         packed.objectIndex.assign(objects.bvh.order.begin(), objects.bvh.order.end());
         packed.unboundedFirst = uint(packed.objectIndex.size());
         packed.unboundedCount = uint(objects.unbounded.size());
         packed.objectIndex.insert(packed.objectIndex.end(), objects.unbounded.begin(),
                                   objects.unbounded.end());
+        if (worldTriangles)
+            objects.bvh =
+                placeTrianglesInWorld(scene, objects.bvh, uint(packed.objectIndex.size()), packed);
+        packed.objectNodes = packBvh(objects.bvh);
         // featuresOf asks for the BVH only with bounded objects: the root exists.
         if (packed.objectNodes.empty()) throw Error("internal: an object BVH without nodes");
         packed.objectBvh = std::move(objects.bvh);

@@ -74,9 +74,12 @@ void requirePrecisionSupported(Precision precision, const DeviceInfo& device) {
 }
 
 ShaderFeatures variantFeatures(const Scene& scene, const RenderSettings& settings, bool allFeatures,
-                               Precision precision) {
+                               Precision precision, const glm::dvec3& eye,
+                               std::uint64_t maxTexels) {
     ShaderFeatures features = featuresOf(scene, settings, allFeatures);
     features.doubles = precision == Precision::Fp64;
+    if (precision == Precision::Robust && !allFeatures)
+        placeMeshesInWorldWhereTheyFit(scene, eye, maxTexels, features);
     return features;
 }
 
@@ -158,8 +161,10 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     if (settings.spp < 1 || settings.spp > kMaxSpp)
         throw Error("render: samples per pixel must be from 1 to " + std::to_string(kMaxSpp));
     const int samples = sampleEnd(settings) - settings.firstSample;  // traced per pixel
-    ShaderFeatures features =
-        variantFeatures(scene, settings, options_.allFeatures, options_.precision);
+    ShaderFeatures features = variantFeatures(
+        scene, settings, options_.allFeatures, options_.precision, camera.eye,
+        options_.worldTriangles ? deviceLimits(context_.device()).maxTexelBufferElements
+                                : 0);  // no room: each mesh walked in its generic space
     features.stressOutput = stressSamples != nullptr;
     if (stressSamples && scene.lights.size() > STRESS_MAX_LIGHTS)
         throw Error("the stress output records the feelers of " +
@@ -332,7 +337,8 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
     oneSample.firstSample = 0;
     oneSample.sampleCount = 0;
     ShaderFeatures features =
-        variantFeatures(scene, oneSample, options_.allFeatures, options_.precision);
+        variantFeatures(scene, oneSample, options_.allFeatures, options_.precision, camera.eye,
+                        deviceLimits(context_.device()).maxTexelBufferElements);
     features.shading[size_t(Shading::Antialias)] = false;
     features.debugPixel = true;
     features.stressOutput = true;

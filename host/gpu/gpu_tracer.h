@@ -37,6 +37,10 @@ int defaultTileSide(const DeviceInfo& device);
 struct GpuRenderOptions {
     std::string shaderDirectory;
     bool allFeatures = false;  // compile every shape in, whatever the scene uses
+    // The mesh objects' triangles placed in world space where they fit
+    // (meshesFitWorldSpace); false: each mesh walked in its generic space,
+    // as the all-features variant does (tests compare the two).
+    bool worldTriangles = true;
     // Pixels per tile side (rounded to a multiple of the block); 0: the
     // device's own (defaultTileSide()).
     int tileSize = 0;
@@ -79,9 +83,11 @@ struct GpuRenderStats {
 };
 
 // The variant a render of `scene` uses, and its source: what render
-// compiles and `vkray features` reports (the same SPIR-V cache key).
+// compiles and `vkray features` reports (the same SPIR-V cache key). `eye`
+// and the device's maxTexels decide whether meshes go into world space
+// (placeMeshesInWorldWhereTheyFit).
 ShaderFeatures variantFeatures(const Scene& scene, const RenderSettings& settings, bool allFeatures,
-                               Precision precision);
+                               Precision precision, const glm::dvec3& eye, std::uint64_t maxTexels);
 ShaderSource variantSource(const std::string& shaderDirectory, const ShaderFeatures& features,
                            Precision precision, const Defines& userDefines);
 

@@ -3,6 +3,7 @@
 #include "gpu/context.h"
 
 #include "scene/scene_geometry.h"
+#include "scene/triangle_mesh.h"
 #include "shaders/layout.h"
 #include "util/error.h"
 
@@ -75,6 +76,54 @@ bool hintsFeelers(const ShaderFeatures& features) {
            !features.stressOutput && !features.debugPixel;
 }
 
+bool meshesFitWorldSpace(const Scene& scene, const glm::dvec3& eye, std::uint64_t maxTexels) {
+    std::size_t triangles = 0;
+    std::vector<const SceneObject*> meshObjects;
+    for (const SceneObject& object : scene.objects) {
+        if (isBoolean(object.type) || gpuKindOf(object.type) != KIND_MESH) continue;
+        if (object.mesh < 0 || std::size_t(object.mesh) >= scene.meshes.size() ||
+            object.material.transparency != 0)
+            return false;
+        meshObjects.push_back(&object);
+        triangles += scene.meshes[std::size_t(object.mesh)]->triangles.size();
+        if (triangles > kWorldTrianglesMax) return false;
+    }
+    if (meshObjects.empty()) return false;
+    std::size_t own = 0;
+    for (const auto& mesh : scene.meshes) own += mesh->triangles.size();
+    if (std::uint64_t(triangles + own) * TRIANGLE_TEXELS > maxTexels) return false;
+    Aabb reached;  // the eye and every bounded object
+    reached.grow(eye);
+    for (const SceneObject& object : scene.objects) {
+        const Aabb box = worldBounds(object, scene);
+        if (box.finite()) reached.grow(box);
+    }
+    for (const SceneObject* object : meshObjects) {
+        const Aabb box = worldBounds(*object, scene);
+        if (!box.finite()) return false;
+        const glm::dvec3 centre = box.centroid();
+        const glm::dvec3 farthest =
+            glm::max(glm::abs(reached.lo - centre), glm::abs(reached.hi - centre));
+        if (!(glm::length(farthest) <= kWorldSpaceReach * glm::length(box.hi - box.lo)))
+            return false;
+    }
+    return true;
+}
+
+void placeMeshesInWorldWhereTheyFit(const Scene& scene, const glm::dvec3& eye,
+                                    std::uint64_t maxTexels, ShaderFeatures& features) {
+    if (!meshesFitWorldSpace(scene, eye, maxTexels)) return;
+    features.meshesInWorld = true;
+    features.objectBvh = true;
+    features.unrolledObjects = 0;
+    features.objectKinds.clear();
+}
+
+bool placesTrianglesInWorld(const ShaderFeatures& features) {
+    return features.meshesInWorld && features.objectBvh && !features.stressOutput &&
+           !features.debugPixel;
+}
+
 ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bool allFeatures) {
     ShaderFeatures features;
     features.aovs = settings.aovs;
@@ -136,6 +185,7 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines) {
     defines.emplace_back("VKRAY_STRESS_OUTPUT", flag(features.stressOutput));
     defines.emplace_back("VKRAY_KEEP_TORI", flag(keepsTori(features)));
     defines.emplace_back("VKRAY_FEELER_HINTS", flag(hintsFeelers(features)));
+    defines.emplace_back("VKRAY_WORLD_TRIANGLES", flag(placesTrianglesInWorld(features)));
     defines.emplace_back("VKRAY_OBJECTS", std::to_string(features.unrolledObjects));
     if (features.unrolledObjects > 0) {
         std::string kinds;
@@ -153,10 +203,10 @@ std::vector<std::string> variantFlags() {
     std::vector<std::string> flags;
     for (const GpuKind& kind : kGpuKinds) flags.push_back(kind.define);
     for (const GpuShading& shading : kGpuShading) flags.push_back(shading.define);
-    for (const char* other :
-         {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_BLOCKS", "VKRAY_AOVS", "VKRAY_DEBUG_PIXEL",
-          "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET", "VKRAY_PRECISION_NAIVE",
-          "VKRAY_PRECISION_FP64", "VKRAY_KEEP_TORI", "VKRAY_FEELER_HINTS", "VKRAY_OBJECTS"})
+    for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_BLOCKS", "VKRAY_AOVS",
+                              "VKRAY_DEBUG_PIXEL", "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET",
+                              "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64", "VKRAY_KEEP_TORI",
+                              "VKRAY_FEELER_HINTS", "VKRAY_WORLD_TRIANGLES", "VKRAY_OBJECTS"})
         flags.push_back(other);
     return flags;
 }
@@ -184,6 +234,7 @@ std::string describe(const ShaderFeatures& features) {
     if (features.debugPixel) text += "+debug-pixel";
     if (features.stressOutput) text += "+stress-output";
     if (features.doubles) text += "+fp64";
+    if (placesTrianglesInWorld(features)) text += "+world-triangles";
     return text;
 }
 
@@ -229,7 +280,8 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
 }
 
 bool meshNodesWithObjects(const ShaderFeatures& features) {
-    return features.objectBvh && features.kinds[KIND_MESH] && !features.stressOutput;
+    return features.objectBvh && features.kinds[KIND_MESH] && !features.stressOutput &&
+           !placesTrianglesInWorld(features);
 }
 
 std::vector<ShaderFeatures> allVariants(bool everyCombination) {
@@ -272,6 +324,16 @@ std::vector<ShaderFeatures> allVariants(bool everyCombination) {
         add(allKinds, shading, false);
         for (std::size_t i = variants.size() - 2; i < variants.size(); ++i)
             variants[i].aovs = false;
+    }
+    // Meshes as triangles in world space, with every shape (a mesh in CSG
+    // keeps its own space), without shading and with all of it.
+    for (unsigned shading : {0u, allShading}) {
+        ShaderFeatures f;
+        f.kinds.fill(true);
+        for (unsigned i = 0; i < kGpuShading.size(); ++i) f.shading[i] = (shading >> i) & 1u;
+        f.objectBvh = true;
+        f.meshesInWorld = true;
+        variants.push_back(f);
     }
     // `vkray stress` and `vkray pixel`: the stress output with everything.
     ShaderFeatures stress;

@@ -69,6 +69,9 @@ struct ShaderFeatures {
     bool debugPixel = false;    // `vkray pixel`: the shader writes a trace record
     bool stressOutput = false;  // `vkray stress`, `vkray pixel`: GpuStressSample per pixel
     bool doubles = false;       // --precision fp64: camera and M^-1 read in double
+    // The mesh objects may go into the object BVH as their triangles in
+    // world space (meshesFitWorldSpace); placesTrianglesInWorld says whether they do.
+    bool meshesInWorld = false;
     // VKRAY_OBJECTS: the object count, when the shader tests each object in
     // turn in a loop it unrolls (a few objects, no BVH, no mesh, every torus
     // kept: keepsTori); 0: a loop over the count read at run time.
@@ -94,6 +97,44 @@ bool keepsTori(const ShaderFeatures& features);
 // as the CPU reference makes them.
 bool hintsFeelers(const ShaderFeatures& features);
 
+// The most triangles, all mesh objects' together, that a scene may place in
+// world space (meshesFitWorldSpace): each is a copy of its mesh's (GpuTriangle).
+inline constexpr std::size_t kWorldTrianglesMax = std::size_t(1) << 21;
+
+// How far from a mesh object, in its sizes (its world box's diagonal), the
+// eye and every bounded object may be for its triangles to go into world
+// space: there float's rounding of their coordinates (2^-24 of the
+// distance) and the walk's widening of each box's far side (3.6e-7 of it)
+// stay under 1.5e-3 of the mesh. Farther, its walk in generic space starts
+// near it (mesh.glsl, meshWalkShift), where world space would meet every
+// box of a squashed teapot seen from 5e5 of its sizes.
+inline constexpr double kWorldSpaceReach = 4096;
+
+// Whether the scene's mesh objects can go into the object BVH as their
+// triangles, placed in world space (M p rounded once from double), so that
+// a walk meets them as it meets objects, with no mesh to enter: there is a
+// mesh object, none is transparent (a feeler that meets a triangle stops:
+// one that crossed a transparent mesh would count it twice), `eye` and the
+// bounded objects are within kWorldSpaceReach of each, their triangles
+// number kWorldTrianglesMax at most, and with the meshes' own they fit one
+// texel buffer of maxTexels. The caller asks only in the robust precision
+// mode: the textbook's (naive) intersects each mesh in its generic space,
+// as Hill does, and fp64 keeps the ray geometry in double.
+bool meshesFitWorldSpace(const Scene& scene, const glm::dvec3& eye, std::uint64_t maxTexels);
+
+// Sets meshesInWorld where the meshes fit, and then an object BVH however
+// few the objects: a lone mesh is walked as the BVH's triangles, not by a
+// walk of its own inside its object's test (the million-triangle mesh of
+// vkray_bench 1.17x).
+void placeMeshesInWorldWhereTheyFit(const Scene& scene, const glm::dvec3& eye,
+                                    std::uint64_t maxTexels, ShaderFeatures& features);
+
+// Whether the variant's walk meets the mesh objects' triangles in world space
+// (VKRAY_WORLD_TRIANGLES): where they fit (meshesInWorld), with an object
+// BVH; not in the stress and debug records, which count each object's test
+// as the CPU reference makes it.
+bool placesTrianglesInWorld(const ShaderFeatures& features);
+
 // Whether each invocation finishes its pixel in one dispatch: one ray a pixel
 // (its feelers included), no secondary rays, one sample. Its rays never
 // pause, so the variant keeps no progress between dispatches (trace.comp's
@@ -111,7 +152,7 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines = 
 
 // Every flag a variant defines, 0 or 1: the shapes, the shading features,
 // VKRAY_LIGHTS, VKRAY_OBJECT_BVH, VKRAY_BLOCKS, VKRAY_AOVS, VKRAY_DEBUG_PIXEL,
-// VKRAY_STRESS_OUTPUT, VKRAY_KEEP_TORI, VKRAY_FEELER_HINTS, the
+// VKRAY_STRESS_OUTPUT, VKRAY_KEEP_TORI, VKRAY_FEELER_HINTS, VKRAY_WORLD_TRIANGLES, the
 // test hook VKRAY_FAULT_NO_OFFSET and the precision modes' two; and the one
 // count, VKRAY_OBJECTS. The one list; shaders/variant_flags.glsl checks each
 // is defined.
@@ -119,7 +160,7 @@ std::vector<std::string> variantFlags();
 
 // "sphere+cube", "all shapes", "no shapes", then the shading features
 // ("+shadows+reflection", "+all shading"), "+bvh", "+blocks", "+aovs", "+debug-pixel",
-// "+stress-output" and "+fp64".
+// "+stress-output", "+fp64" and "+world-triangles".
 std::string describe(const ShaderFeatures& features);
 
 // How the shader reads a binding (shaders/layout.h, "Descriptor bindings").
@@ -140,9 +181,9 @@ struct ShaderBinding {
 std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features);
 
 // Whether the variant walks meshes in its object BVH's walk, entering each
-// mesh object met (an object BVH and meshes, no stress record; trace.comp's
-// VKRAY_MESH_INSTANCES): the meshes' BVH nodes then follow the objects' in
-// one array (BINDING_OBJECT_NODES), and BINDING_MESH_NODES is not bound.
+// mesh object met (an object BVH and meshes, no stress record, no triangles
+// in world space; trace.comp's VKRAY_MESH_INSTANCES): the meshes' BVH nodes then follow the
+// objects' in one array (BINDING_OBJECT_NODES), and BINDING_MESH_NODES is not bound.
 bool meshNodesWithObjects(const ShaderFeatures& features);
 
 // The variants `vkray shaders check` compiles, each with and without the
@@ -153,9 +194,10 @@ bool meshNodesWithObjects(const ShaderFeatures& features);
 // together with all shapes, and all together with each kind alone and with
 // the debug-pixel record; with --all, every combination of them with all
 // shapes and with each kind alone. Then all shapes without the AOV texel,
-// with no shading and with all of it. Last, the stress output with
-// everything, with and without the debug-pixel record (148 in all; --all:
-// 1,672).
+// with no shading and with all of it; the mesh objects' triangles in world
+// space with all shapes, with no shading and with all of it. Last, the
+// stress output with everything, with and without the debug-pixel record
+// (150 in all; --all: 1,674).
 std::vector<ShaderFeatures> allVariants(bool everyCombination = false);
 
 }  // namespace vkray::gpu

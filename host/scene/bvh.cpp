@@ -276,4 +276,29 @@ Bvh buildBvh(std::span<const Aabb> boxes, int maxLeafSize) {
     return BvhBuilder(boxes, maxLeafSize).build();
 }
 
+Bvh joinBvhs(const Bvh& first, const Bvh& second, std::uint32_t secondOffset) {
+    Bvh joined;
+    joined.order = first.order;
+    const bool both = !first.nodes.empty() && !second.nodes.empty();
+    if (both) {
+        BvhNode root;
+        root.bounds = first.nodes[0].bounds;
+        root.bounds.grow(second.nodes[0].bounds);
+        root.first = std::uint32_t(1 + first.nodes.size());
+        joined.nodes.push_back(root);
+    }
+    // Interior nodes name their second child by index: moved with the node.
+    const auto append = [&](const Bvh& bvh, std::uint32_t leafOffset) {
+        const std::uint32_t shift = std::uint32_t(joined.nodes.size());
+        for (BvhNode node : bvh.nodes) {
+            node.first += node.leaf() ? leafOffset : shift;
+            joined.nodes.push_back(node);
+        }
+    };
+    append(first, 0);
+    append(second, secondOffset);
+    joined.depth = std::max(first.depth, second.depth) + (both ? 1 : 0);
+    return joined;
+}
+
 }  // namespace vkray

@@ -62,4 +62,10 @@ struct Bvh {
 inline constexpr int kMaxBvhDepth = 48;
 Bvh buildBvh(std::span<const Aabb> boxes, int maxLeafSize = 4);
 
+// A BVH whose root's two children are the roots of `first` and `second`
+// (either may be empty: the other is then the whole), for two kinds of
+// primitive kept apart, each leaf holding one kind: second's leaves index
+// from secondOffset on, past first's entries. The order is first's alone.
+Bvh joinBvhs(const Bvh& first, const Bvh& second, std::uint32_t secondOffset);
+
 }  // namespace vkray

@@ -246,11 +246,12 @@ Aabb worldBounds(const SceneObject& object, const Scene& scene) {
     return transformedBox(*generic, object.worldFromObject);
 }
 
-ObjectBvh buildObjectBvh(const Scene& scene) {
+ObjectBvh buildObjectBvh(const Scene& scene, MeshObjects meshes) {
     ObjectBvh result;
     std::vector<Aabb> boxes;
     std::vector<std::uint32_t> objectOf;
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        if (meshes == MeshObjects::Apart && scene.objects[i].mesh >= 0) continue;
         const Aabb box = worldBounds(scene.objects[i], scene);
         if (box.empty()) continue;  // an empty intersection: no ray can hit it
         if (box.finite()) {

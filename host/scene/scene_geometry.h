@@ -46,11 +46,14 @@ Aabb worldBounds(const SceneObject& object, const Scene& scene);
 // The BVH over the scene's bounded objects (order indexes scene.objects);
 // unbounded ones (planes) are listed apart and tested for every ray. An
 // object with an empty box (an intersection of objects whose boxes are apart)
-// can never be hit and is in neither.
+// can never be hit and is in neither. Without meshes, the mesh objects
+// (SceneObject::mesh set) are in neither either: the caller places their
+// triangles.
 struct ObjectBvh {
     Bvh bvh;
     std::vector<std::uint32_t> unbounded;
 };
-ObjectBvh buildObjectBvh(const Scene& scene);
+enum class MeshObjects { In, Apart };
+ObjectBvh buildObjectBvh(const Scene& scene, MeshObjects meshes = MeshObjects::In);
 
 }  // namespace vkray

@@ -79,38 +79,63 @@ TEST_F(Features, DefaultSceneReport) {
 }
 
 TEST_F(Features, MeshSceneBindsMeshAndBvhBuffers) {
-    // meshes.sdl: a plane, a 3VN mesh, an extruded outline and 10 balls:
-    // 12 bounded objects, so the object BVH; two meshes.
-    RunResult run = vkray("features " + kScenes + "meshes.sdl");
-    ASSERT_EQ(run.status, 0) << run.output;
-    EXPECT_EQ(field(run.output, "shapes"), "10 sphere, 1 plane, 1 mesh, 1 extrude");
-    EXPECT_EQ(field(run.output, "object BVH").substr(0, 24), "yes (12 bounded objects;");
-    EXPECT_EQ(field(run.output, "variant"), "sphere+plane+mesh+shadows+bvh");
-    EXPECT_EQ(field(run.output, "defines"),
-              "VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_MESH=1 VKRAY_SHADOWS=1 "
-              "VKRAY_LIGHTS=1 VKRAY_OBJECT_BVH=1 (every other variant flag 0)");
-    const std::vector<std::string> lines = buffers(run.output);
-    std::vector<std::string> bound;
-    for (const std::string& line : lines)
-        bound.push_back(line.substr(0, std::min(line.find(" storage"), line.find(" texels"))));
-    const std::vector<std::string> expected{"0 frame",
-                                            "21 tile",
-                                            "1 objects",
-                                            "18 materials",
-                                            "2 lights",
-                                            "3 pixels",
-                                            "20 ray groups",
-                                            "16 dispatch status",
-                                            "5 object BVH nodes",
-                                            "6 object BVH index",
-                                            "7 meshes",
-                                            "9 triangles"};
-    // The meshes' BVH nodes follow the objects' in 5: one walk takes both.
-    EXPECT_EQ(bound, expected) << run.output;
-    // 10 balls + mesh + extrusion in the BVH's index, then the plane.
-    EXPECT_NE(std::find(lines.begin(), lines.end(), "6 object BVH index texels 52 bytes (13 x 4)"),
-              lines.end())
-        << run.output;
+    // meshes.sdl: a plane, a 3VN mesh (16 triangles), an extruded outline
+    // (12) and 10 balls: 12 bounded objects, so the object BVH; two meshes.
+    // In the textbook mode each mesh is walked in its own space, entered by
+    // the objects' walk; in the robust mode their triangles go into the
+    // object BVH in world space.
+    for (const bool world : {false, true}) {
+        SCOPED_TRACE(world ? "robust" : "naive");
+        RunResult run =
+            vkray("features " + kScenes + "meshes.sdl" + (world ? "" : " --precision naive"));
+        ASSERT_EQ(run.status, 0) << run.output;
+        EXPECT_EQ(field(run.output, "shapes"), "10 sphere, 1 plane, 1 mesh, 1 extrude");
+        EXPECT_EQ(field(run.output, "meshes"),
+                  world ? "2 (28 triangles); the mesh objects' 28 triangles in the object BVH, "
+                          "placed in world space"
+                        : "2 (28 triangles); each mesh walked in its own space (world space "
+                          "takes opaque meshes near the eye, up to 2097152 triangles, in the "
+                          "robust mode)");
+        EXPECT_EQ(field(run.output, "object BVH").substr(0, 24), "yes (12 bounded objects;");
+        EXPECT_EQ(field(run.output, "variant"),
+                  world ? "sphere+plane+mesh+shadows+bvh+world-triangles"
+                        : "sphere+plane+mesh+shadows+bvh");
+        EXPECT_EQ(field(run.output, "defines"),
+                  std::string("VKRAY_SHAPE_SPHERE=1 VKRAY_SHAPE_PLANE=1 VKRAY_SHAPE_MESH=1 "
+                              "VKRAY_SHADOWS=1 VKRAY_LIGHTS=1 VKRAY_OBJECT_BVH=1 ") +
+                      (world ? "VKRAY_WORLD_TRIANGLES=1" : "VKRAY_PRECISION_NAIVE=1") +
+                      " (every other variant flag 0)");
+        const std::vector<std::string> lines = buffers(run.output);
+        std::vector<std::string> bound;
+        for (const std::string& line : lines)
+            bound.push_back(line.substr(0, std::min(line.find(" storage"), line.find(" texels"))));
+        std::vector<std::string> expected{"0 frame",
+                                          "21 tile",
+                                          "1 objects",
+                                          "18 materials",
+                                          "2 lights",
+                                          "3 pixels",
+                                          "20 ray groups",
+                                          "16 dispatch status",
+                                          "5 object BVH nodes",
+                                          "6 object BVH index",
+                                          "7 meshes",
+                                          "9 triangles"};
+        // The meshes' BVH nodes follow the objects' in 5, one walk taking
+        // both; apart in 8 where only a mesh in CSG would walk them.
+        if (world) expected.insert(expected.end() - 1, "8 mesh BVH nodes");
+        EXPECT_EQ(bound, expected) << run.output;
+        // 10 balls + mesh + extrusion in the BVH's index, then the plane; in
+        // world space the balls and the plane, the 28 triangles and their
+        // copies in world space in 9.
+        for (const char* line :
+             world ? std::vector<const char*>{"6 object BVH index texels 44 bytes (11 x 4)",
+                                              "9 triangles texels 5376 bytes (56 x 96)"}
+                   : std::vector<const char*>{"6 object BVH index texels 52 bytes (13 x 4)",
+                                              "9 triangles texels 2688 bytes (28 x 96)"})
+            EXPECT_NE(std::find(lines.begin(), lines.end(), line), lines.end()) << line << "\n"
+                                                                                << run.output;
+    }
 }
 
 TEST_F(Features, FeelersTakeHintsInABvhWithoutPlanes) {
@@ -126,8 +151,9 @@ TEST_F(Features, FeelersTakeHintsInABvhWithoutPlanes) {
 
 TEST_F(Features, ALoneObjectIsTestedAloneWhateverItsShape) {
     // A torus or a mesh among others keeps the loop over the run-time count;
-    // alone, its test is the walk (no loop, its code once).
-    for (const char* shape : {"torus", "tetrahedron"}) {
+    // alone, its test is the walk (no loop, its code once). An opaque mesh
+    // alone goes into world space, in a BVH of its own (the next test).
+    for (const char* shape : {"torus", "transparency 0.5 tetrahedron"}) {
         RunResult run =
             vkray("features " + scene("lone.sdl", std::string("light 2 3 4 1 1 1\n") + shape));
         ASSERT_EQ(run.status, 0) << run.output;
@@ -139,6 +165,22 @@ TEST_F(Features, ALoneObjectIsTestedAloneWhateverItsShape) {
                   std::string::npos)
             << run.output;
     }
+}
+
+TEST_F(Features, ALoneOpaqueMeshNearTheEyeIsWalkedAsTrianglesInWorldSpace) {
+    const std::string lone = "light 2 3 4 1 1 1\ncamera eye 3 2 4\ntetrahedron\n";
+    RunResult run = vkray("features " + scene("lone.sdl", lone));
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_EQ(field(run.output, "object BVH"),
+              "yes (1 bounded objects; more than 8, or two with a mesh, get one; so do "
+              "triangles in world space)");
+    EXPECT_EQ(field(run.output, "variant"), "mesh+shadows+bvh+world-triangles");
+    // From 1e5 away, over 4096 of the tetrahedron's sizes, its walk starts near
+    // it in its own space instead.
+    RunResult far =
+        vkray("features " + scene("far.sdl", std::string(lone) + "camera eye 0 0 100000\n"));
+    ASSERT_EQ(far.status, 0) << far.output;
+    EXPECT_EQ(field(far.output, "variant"), "mesh+shadows") << far.output;
 }
 
 TEST_F(Features, VariantAllCompilesEveryFeatureAndBindsTheirBuffers) {

@@ -159,7 +159,7 @@ std::vector<SceneFile> projectScenes() {
 
 std::vector<SceneFile> dataScenes() {
     std::vector<SceneFile> files;
-    for (const char* name : {"gallery.dat", "kitchen.dat", "tower.dat"})
+    for (const char* name : {"gallery.dat", "kitchen.dat", "tower.dat", "world_triangles.sdl"})
         files.push_back({test::kDataDir + "/" + name});
     return files;
 }

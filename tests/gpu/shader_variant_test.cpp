@@ -2,6 +2,7 @@
 // Whitted shading it can use (no device needed; compiling them is
 // `vkray shaders check`, in tests/app/shader_dev_test.cpp).
 #include "gpu/shader_variant.h"
+#include "gpu/gpu_tracer.h"
 #include "shaders/layout.h"
 
 #include "scene/scene_geometry.h"
@@ -10,8 +11,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -189,6 +192,75 @@ TEST(ShaderVariant, FeelersTakeHintsInABvhWithoutUnboundedObjects) {
     EXPECT_TRUE(hintsFeelers(featuresOfText(lit + nine, 1, true)));
 }
 
+// Mesh objects go into the object BVH as their triangles in world space
+// where none is transparent, the eye and every bounded object are near
+// (kWorldSpaceReach of its sizes), and they fit the texel buffer; only in
+// the robust mode, never in the all-features variant nor in the stress and
+// debug records. A lone mesh then gets an object BVH, and the meshes' nodes
+// stay apart from the objects' (a mesh in CSG walks them).
+TEST(ShaderVariant, OpaqueMeshesNearTheEyeGoIntoTheObjectBvhInWorldSpace) {
+    const auto built = [](const std::string& sdl) {
+        Scene scene = parseSdl(sdl, "t.sdl", {});
+        loadSceneGeometry(scene, false, nullptr);
+        return scene;
+    };
+    const glm::dvec3 eye(5, 5, 5);
+    const std::uint64_t room = std::numeric_limits<std::uint64_t>::max();
+    const std::string nine = "sphere sphere sphere cube cube cube cone cone cone ";
+    const auto fits = [&](const std::string& sdl) {
+        return meshesFitWorldSpace(built(sdl), eye, room);
+    };
+    EXPECT_TRUE(fits(nine + "tetrahedron octahedron"));
+    EXPECT_FALSE(fits(nine));  // no mesh
+    EXPECT_FALSE(fits(nine + "tetrahedron transparency 0.5 octahedron"));
+    // A mesh in CSG stays in its own space: it is not a mesh object.
+    EXPECT_FALSE(fits(nine + "intersection sphere octahedron"));
+    // The eye, or another object, within 4096 of the tetrahedron's sizes
+    // (its box's diagonal) of its box's centre, and beyond.
+    const Scene tetrahedron = built("tetrahedron");
+    const Aabb box = worldBounds(tetrahedron.objects[0], tetrahedron);
+    const double size = glm::length(box.hi - box.lo);
+    const glm::dvec3 away = box.centroid() + glm::dvec3(0, 0, size);
+    EXPECT_TRUE(
+        meshesFitWorldSpace(tetrahedron, box.centroid() + 4000.0 * (away - box.centroid()), room));
+    EXPECT_FALSE(
+        meshesFitWorldSpace(tetrahedron, box.centroid() + 4200.0 * (away - box.centroid()), room));
+    EXPECT_FALSE(fits("tetrahedron push translate 0 0 " + std::to_string(4200 * size) +
+                      " sphere pop"));  // an object that far
+    // 4 triangles and their 4 copies, 6 texels each: 48.
+    EXPECT_TRUE(meshesFitWorldSpace(built("tetrahedron"), eye, 48));
+    EXPECT_FALSE(meshesFitWorldSpace(built("tetrahedron"), eye, 47));
+
+    const Scene scene = built(nine + "tetrahedron");
+    const RenderSettings settings;
+    const ShaderFeatures robust =
+        variantFeatures(scene, settings, false, Precision::Robust, eye, room);
+    EXPECT_TRUE(placesTrianglesInWorld(robust));
+    EXPECT_TRUE(hasDefine(robust, "VKRAY_WORLD_TRIANGLES"));
+    EXPECT_FALSE(meshNodesWithObjects(robust));
+    EXPECT_NE(describe(robust).find("+world-triangles"), std::string::npos);
+    for (Precision other : {Precision::Naive, Precision::Fp64})
+        EXPECT_FALSE(
+            placesTrianglesInWorld(variantFeatures(scene, settings, false, other, eye, room)));
+    EXPECT_FALSE(placesTrianglesInWorld(
+        variantFeatures(scene, settings, true, Precision::Robust, eye, room)));
+    ShaderFeatures stress = robust, debug = robust, noBvh = robust;
+    stress.stressOutput = true;
+    debug.debugPixel = true;
+    noBvh.objectBvh = false;
+    EXPECT_FALSE(placesTrianglesInWorld(stress));
+    EXPECT_FALSE(placesTrianglesInWorld(debug));
+    EXPECT_TRUE(meshNodesWithObjects(debug));  // entered by the walk, as ever
+    EXPECT_FALSE(placesTrianglesInWorld(noBvh));
+    // A lone mesh's triangles get an object BVH of their own.
+    const Scene lone = built("tetrahedron");
+    const ShaderFeatures alone =
+        variantFeatures(lone, settings, false, Precision::Robust, eye, room);
+    EXPECT_TRUE(placesTrianglesInWorld(alone));
+    EXPECT_EQ(alone.unrolledObjects, 0u);
+    EXPECT_FALSE(variantFeatures(lone, settings, false, Precision::Naive, eye, room).objectBvh);
+}
+
 // A scene without lights has no light code and binds no lights; a lit
 // lone plane has the light code but no feelers.
 TEST(ShaderVariant, LightCodeOnlyWhereTheSceneHasLights) {
@@ -297,7 +369,7 @@ TEST(ShaderVariant, OnlyVariantsWhoseRaysMayPauseKeepRayProgress) {
 
 TEST(ShaderVariant, ShadersCheckCoversEachShadingFeatureAndTheirMix) {
     const std::vector<ShaderFeatures> variants = allVariants();
-    EXPECT_EQ(variants.size(), 148u);
+    EXPECT_EQ(variants.size(), 150u);
     EXPECT_EQ(
         count_if(variants.begin(), variants.end(), [](const ShaderFeatures& f) { return !f.aovs; }),
         4);
@@ -317,11 +389,12 @@ TEST(ShaderVariant, ShadersCheckCoversEachShadingFeatureAndTheirMix) {
               }),
               2);
     EXPECT_EQ(count([](const ShaderFeatures& f) { return f.stressOutput; }), 2);
+    EXPECT_EQ(count([](const ShaderFeatures& f) { return placesTrianglesInWorld(f); }), 2);
     // Every variant is different.
     for (std::size_t i = 0; i < variants.size(); ++i)
         for (std::size_t j = i + 1; j < variants.size(); ++j)
             ASSERT_FALSE(variants[i] == variants[j]) << describe(variants[i]);
-    EXPECT_EQ(allVariants(true).size(), 1672u);
+    EXPECT_EQ(allVariants(true).size(), 1674u);
 }
 
 }  // namespace

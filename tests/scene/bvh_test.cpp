@@ -274,6 +274,52 @@ TEST(Bvh, RandomBoxesKeepInvariantsAndAreAllReachable) {
     }
 }
 
+// Two BVHs under one root: every primitive of each in exactly one leaf of
+// the joined tree, the second's leaves numbered from the offset on, every
+// box inside its parent's; with one side empty, the other alone.
+TEST(Bvh, JoinedTreesKeepEachSidesLeaves) {
+    const std::vector<Aabb> first = randomBoxes(300, 1), second = randomBoxes(500, 2, 20, 0.5);
+    const Bvh a = buildBvh(first), b = buildBvh(second);
+    constexpr std::uint32_t kOffset = 1000;
+    const Bvh joined = joinBvhs(a, b, kOffset);
+    ASSERT_EQ(joined.nodes.size(), 1 + a.nodes.size() + b.nodes.size());
+    EXPECT_EQ(joined.order, a.order);
+    EXPECT_EQ(joined.depth, std::max(a.depth, b.depth) + 1);
+    std::vector<int> seenFirst(first.size(), 0), seenSecond(second.size(), 0);
+    for (std::uint32_t i = 0; i < joined.nodes.size(); ++i) {
+        const BvhNode& node = joined.nodes[i];
+        if (!node.leaf()) {
+            ASSERT_LT(node.first, joined.nodes.size());
+            EXPECT_TRUE(contains(node.bounds, joined.nodes[i + 1].bounds));
+            EXPECT_TRUE(contains(node.bounds, joined.nodes[node.first].bounds));
+            continue;
+        }
+        for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
+            if (k >= kOffset) {
+                const std::uint32_t p = b.order.at(k - kOffset);
+                ++seenSecond[p];
+                EXPECT_TRUE(contains(node.bounds, second[p]));
+            } else {
+                const std::uint32_t p = a.order.at(k);
+                ++seenFirst[p];
+                EXPECT_TRUE(contains(node.bounds, first[p]));
+            }
+        }
+    }
+    const auto once = [](const std::vector<int>& seen) {
+        return std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; });
+    };
+    EXPECT_TRUE(once(seenFirst));
+    EXPECT_TRUE(once(seenSecond));
+    const Bvh alone = joinBvhs(Bvh{}, b, kOffset);
+    ASSERT_EQ(alone.nodes.size(), b.nodes.size());
+    EXPECT_EQ(alone.depth, b.depth);
+    EXPECT_TRUE(alone.order.empty());
+    EXPECT_EQ(alone.nodes[0].first,
+              b.nodes[0].leaf() ? b.nodes[0].first + kOffset : b.nodes[0].first);
+    EXPECT_EQ(joinBvhs(a, Bvh{}, kOffset).nodes.size(), a.nodes.size());
+}
+
 // Smallest t > 0 where the ray meets the sphere, or inf.
 double hitSphere(const glm::dvec3& centre, double radius, const glm::dvec3& origin,
                  const glm::dvec3& d) {

@@ -33,9 +33,10 @@ inline gpu::Context& gpuContext() {
 
 inline Frame renderOnGpu(const Scene& scene, const CameraBasis& camera,
                          const RenderSettings& settings, gpu::GpuRenderStats* stats = nullptr,
-                         bool allFeatures = false) {
-    gpu::GpuTracer tracer(gpuContext(),
-                          {.shaderDirectory = kShaderDir, .allFeatures = allFeatures});
+                         bool allFeatures = false, bool worldTriangles = true) {
+    gpu::GpuTracer tracer(gpuContext(), {.shaderDirectory = kShaderDir,
+                                         .allFeatures = allFeatures,
+                                         .worldTriangles = worldTriangles});
     return tracer.render(scene, camera, settings, stats);
 }
 
