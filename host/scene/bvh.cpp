@@ -1,5 +1,7 @@
 #include "scene/bvh.h"
 
+#include "util/error.h"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -274,6 +276,35 @@ private:
 
 Bvh buildBvh(std::span<const Aabb> boxes, int maxLeafSize) {
     return BvhBuilder(boxes, maxLeafSize).build();
+}
+
+Bvh nestBvhs(const Bvh& top, std::span<const Bvh> subtrees,
+             std::span<const std::uint32_t> leafOffsets) {
+    Bvh nested;
+    // Depth first, as buildBvh lays nodes out: a node's first child follows
+    // it, its second child's index is set once that child is placed.
+    const auto place = [&](auto& self, std::uint32_t index, int depth) -> void {
+        const BvhNode& node = top.nodes[index];
+        if (node.leaf()) {
+            if (node.count != 1) throw Error("internal: nestBvhs: a top leaf of several subtrees");
+            const std::uint32_t which = top.order[node.first];
+            const Bvh& subtree = subtrees[which];
+            const std::uint32_t shift = std::uint32_t(nested.nodes.size());
+            for (BvhNode inner : subtree.nodes) {
+                inner.first += inner.leaf() ? leafOffsets[which] : shift;
+                nested.nodes.push_back(inner);
+            }
+            nested.depth = std::max(nested.depth, depth - 1 + subtree.depth);
+            return;
+        }
+        const std::size_t at = nested.nodes.size();
+        nested.nodes.push_back(BvhNode{node.bounds, 0, 0});
+        self(self, index + 1, depth + 1);
+        nested.nodes[at].first = std::uint32_t(nested.nodes.size());
+        self(self, node.first, depth + 1);
+    };
+    if (!top.nodes.empty()) place(place, 0, 1);
+    return nested;
 }
 
 Bvh joinBvhs(const Bvh& first, const Bvh& second, std::uint32_t secondOffset) {

@@ -68,4 +68,11 @@ Bvh buildBvh(std::span<const Aabb> boxes, int maxLeafSize = 4);
 // from secondOffset on, past first's entries. The order is first's alone.
 Bvh joinBvhs(const Bvh& first, const Bvh& second, std::uint32_t secondOffset);
 
+// `top` (built with maxLeafSize 1 over the subtrees' root boxes: its order
+// names subtrees) with each leaf replaced by its subtree, whose leaves index
+// from leafOffsets[that subtree] on. The order is empty: the caller places
+// the primitives. Its depth may pass kMaxBvhDepth: the caller checks.
+Bvh nestBvhs(const Bvh& top, std::span<const Bvh> subtrees,
+             std::span<const std::uint32_t> leafOffsets);
+
 }  // namespace vkray

@@ -320,6 +320,53 @@ TEST(Bvh, JoinedTreesKeepEachSidesLeaves) {
     EXPECT_EQ(joinBvhs(a, Bvh{}, kOffset).nodes.size(), a.nodes.size());
 }
 
+// Subtrees nested under a BVH over their roots: every primitive of each in
+// exactly one leaf, numbered from its subtree's offset on, every box inside
+// its parent's, and as deep as the top's path to it and the subtree.
+TEST(Bvh, NestedSubtreesKeepTheirLeaves) {
+    std::vector<std::vector<Aabb>> boxes;
+    std::vector<Bvh> subtrees;
+    std::vector<Aabb> roots;
+    std::vector<std::uint32_t> offsets;
+    std::uint32_t offset = 0;
+    for (std::uint32_t k = 0; k < 5; ++k) {
+        boxes.push_back(randomBoxes(40 + 30 * k, 10 + k, 10 + 5.0 * k));
+        subtrees.push_back(buildBvh(boxes.back()));
+        roots.push_back(subtrees.back().nodes[0].bounds);
+        offsets.push_back(offset);
+        offset += std::uint32_t(boxes.back().size());
+    }
+    const Bvh top = buildBvh(roots, 1);
+    const Bvh nested = nestBvhs(top, subtrees, offsets);
+    std::size_t nodes = top.nodes.size() - 5;  // the top's leaves give way to the subtrees
+    int deepest = 0;
+    for (const Bvh& subtree : subtrees) {
+        nodes += subtree.nodes.size();
+        deepest = std::max(deepest, subtree.depth);
+    }
+    ASSERT_EQ(nested.nodes.size(), nodes);
+    EXPECT_LE(nested.depth, top.depth - 1 + deepest);
+    EXPECT_GE(nested.depth, deepest + 1);
+    std::vector<int> seen(offset, 0);
+    for (std::uint32_t i = 0; i < nested.nodes.size(); ++i) {
+        const BvhNode& node = nested.nodes[i];
+        if (!node.leaf()) {
+            ASSERT_LT(node.first, nested.nodes.size());
+            EXPECT_TRUE(contains(node.bounds, nested.nodes[i + 1].bounds));
+            EXPECT_TRUE(contains(node.bounds, nested.nodes[node.first].bounds));
+            continue;
+        }
+        for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
+            const auto which = std::upper_bound(offsets.begin(), offsets.end(), k) - 1;
+            const std::size_t tree = std::size_t(which - offsets.begin());
+            const std::uint32_t p = subtrees[tree].order.at(k - *which);
+            ++seen.at(k);
+            EXPECT_TRUE(contains(node.bounds, boxes[tree][p]));
+        }
+    }
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; }));
+}
+
 // Smallest t > 0 where the ray meets the sphere, or inf.
 double hitSphere(const glm::dvec3& centre, double radius, const glm::dvec3& origin,
                  const glm::dvec3& d) {
