@@ -175,8 +175,8 @@ struct GpuTriangle {
 // A mesh object's triangle placed in world space (VKRAY_WORLD_TRIANGLES):
 // a GpuTriangle whose corners are M p; p0.w is the object's index and p1.w
 // the triangle's own GpuTriangle (its normals), as uint bits. These come
-// first in the triangle array, in the object BVH's leaf order.
-
+// first in the triangle array, object by object, each in its mesh's leaf
+// order (host/gpu/gpu_scene.cpp).
 
 // CSG trees in post order: a leaf pushes its primitive's inside-spans, an
 // operator combines the two lists on top. Primitives are objects stored

@@ -298,9 +298,9 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, uint hint,
 #else
     const uint STACK_SIZE = BVH_STACK_SIZE;
 #if VKRAY_WORLD_TRIANGLES
-    // The leaves from the index's end on (the objects', then the unbounded
-    // ones) hold triangles in world space (host: packScene); no mesh object
-    // is left among the objects.
+    // Leaves whose entries start past the object index's (the bounded
+    // objects', then the unbounded ones) hold triangles in world space
+    // (host: packScene); no mesh object is left among the objects.
     const uint WALK_SHAPES = ALL_SHAPES & ~(1u << KIND_MESH);
     uint triangleFirst = frame.counts.z + frame.counts.w;
     ShearedRay sheared = shearRay(origin, direction);
