@@ -274,6 +274,22 @@ TEST(Bvh, RandomBoxesKeepInvariantsAndAreAllReachable) {
     }
 }
 
+// Checks that every interior node of `bvh` holds its two children's boxes
+// and calls leafEntry(node, k) for each entry k of each leaf.
+template <class LeafEntry>
+void forEachLeafEntry(const Bvh& bvh, LeafEntry leafEntry) {
+    for (std::uint32_t i = 0; i < bvh.nodes.size(); ++i) {
+        const BvhNode& node = bvh.nodes[i];
+        if (node.leaf()) {
+            for (std::uint32_t k = node.first; k < node.first + node.count; ++k) leafEntry(node, k);
+            continue;
+        }
+        ASSERT_LT(node.first, bvh.nodes.size());
+        EXPECT_TRUE(contains(node.bounds, bvh.nodes[i + 1].bounds));
+        EXPECT_TRUE(contains(node.bounds, bvh.nodes[node.first].bounds));
+    }
+}
+
 // Two BVHs under one root: every primitive of each in exactly one leaf of
 // the joined tree, the second's leaves numbered from the offset on, every
 // box inside its parent's; with one side empty, the other alone.
@@ -286,26 +302,17 @@ TEST(Bvh, JoinedTreesKeepEachSidesLeaves) {
     EXPECT_EQ(joined.order, a.order);
     EXPECT_EQ(joined.depth, std::max(a.depth, b.depth) + 1);
     std::vector<int> seenFirst(first.size(), 0), seenSecond(second.size(), 0);
-    for (std::uint32_t i = 0; i < joined.nodes.size(); ++i) {
-        const BvhNode& node = joined.nodes[i];
-        if (!node.leaf()) {
-            ASSERT_LT(node.first, joined.nodes.size());
-            EXPECT_TRUE(contains(node.bounds, joined.nodes[i + 1].bounds));
-            EXPECT_TRUE(contains(node.bounds, joined.nodes[node.first].bounds));
-            continue;
+    forEachLeafEntry(joined, [&](const BvhNode& node, std::uint32_t k) {
+        if (k >= kOffset) {
+            const std::uint32_t p = b.order.at(k - kOffset);
+            ++seenSecond[p];
+            EXPECT_TRUE(contains(node.bounds, second[p]));
+        } else {
+            const std::uint32_t p = a.order.at(k);
+            ++seenFirst[p];
+            EXPECT_TRUE(contains(node.bounds, first[p]));
         }
-        for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
-            if (k >= kOffset) {
-                const std::uint32_t p = b.order.at(k - kOffset);
-                ++seenSecond[p];
-                EXPECT_TRUE(contains(node.bounds, second[p]));
-            } else {
-                const std::uint32_t p = a.order.at(k);
-                ++seenFirst[p];
-                EXPECT_TRUE(contains(node.bounds, first[p]));
-            }
-        }
-    }
+    });
     const auto once = [](const std::vector<int>& seen) {
         return std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; });
     };
@@ -348,22 +355,13 @@ TEST(Bvh, NestedSubtreesKeepTheirLeaves) {
     EXPECT_LE(nested.depth, top.depth - 1 + deepest);
     EXPECT_GE(nested.depth, deepest + 1);
     std::vector<int> seen(offset, 0);
-    for (std::uint32_t i = 0; i < nested.nodes.size(); ++i) {
-        const BvhNode& node = nested.nodes[i];
-        if (!node.leaf()) {
-            ASSERT_LT(node.first, nested.nodes.size());
-            EXPECT_TRUE(contains(node.bounds, nested.nodes[i + 1].bounds));
-            EXPECT_TRUE(contains(node.bounds, nested.nodes[node.first].bounds));
-            continue;
-        }
-        for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
-            const auto which = std::upper_bound(offsets.begin(), offsets.end(), k) - 1;
-            const std::size_t tree = std::size_t(which - offsets.begin());
-            const std::uint32_t p = subtrees[tree].order.at(k - *which);
-            ++seen.at(k);
-            EXPECT_TRUE(contains(node.bounds, boxes[tree][p]));
-        }
-    }
+    forEachLeafEntry(nested, [&](const BvhNode& node, std::uint32_t k) {
+        const auto which = std::upper_bound(offsets.begin(), offsets.end(), k) - 1;
+        const std::size_t tree = std::size_t(which - offsets.begin());
+        const std::uint32_t p = subtrees[tree].order.at(k - *which);
+        ++seen.at(k);
+        EXPECT_TRUE(contains(node.bounds, boxes[tree][p]));
+    });
     EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; }));
 }
 
