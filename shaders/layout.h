@@ -80,7 +80,9 @@ VKRAY_CONST(uint, RAY_TASK_TEXELS, 4u);       // GpuRayTask
 VKRAY_CONST(uint, DOUBLE_RAY_TASK_TEXELS, 6u);  // GpuDoubleRayTask: a dvec4 is two texels
 
 // Bounds of the shader's fixed-size stacks; the host refuses scenes beyond them.
-VKRAY_CONST(uint, BVH_STACK_SIZE, 48u);  // BVH depth (kMaxBvhDepth on the host)
+// A walk's pending nodes: one a level but the leaf's, for the object BVH
+// joined to the world triangles' (kMaxBvhDepth + 1 levels, host/gpu/gpu_scene.cpp).
+VKRAY_CONST(uint, BVH_STACK_SIZE, 48u);
 VKRAY_CONST(uint, CSG_MAX_SPANS, 8u);    // inside-spans per CSG list
 VKRAY_CONST(uint, CSG_MAX_STACK, 4u);    // CSG lists alive at once while evaluating a tree
 VKRAY_CONST(uint, MAX_RECURSION_DEPTH, 64u);  // maxRecursionDepth (kMaxRecursionDepth on the host)

@@ -14,10 +14,9 @@ int runFeatures(const Options& o, std::ostream& out, std::ostream& err) {
     RenderSettings settings;
     settings.spp = o.spp;
     settings.aovs = false;  // as `render` without --aov
-    const gpu::ShaderFeatures features =
-        gpu::variantFeatures(scene, settings, o.allFeatures, o.precision,
-                             (scene.camera ? *scene.camera : autoCamera(scene)).eye,
-                             std::numeric_limits<std::uint64_t>::max());
+    const gpu::ShaderFeatures features = gpu::variantFeatures(
+        scene, settings, o.allFeatures, o.precision, chooseCamera(scene, o).eye,
+        std::numeric_limits<std::uint64_t>::max());  // no device here
     const gpu::ShaderSource source =
         gpu::variantSource(shaderDirectoryFor(o), features, o.precision, o.defines);
     out << formatFeatureReport(scene, settings, features, o.precision, source.defines,

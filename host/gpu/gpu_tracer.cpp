@@ -336,9 +336,9 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
     oneSample.spp = 1;
     oneSample.firstSample = 0;
     oneSample.sampleCount = 0;
-    ShaderFeatures features =
-        variantFeatures(scene, oneSample, options_.allFeatures, options_.precision, camera.eye,
-                        deviceLimits(context_.device()).maxTexelBufferElements);
+    ShaderFeatures features = variantFeatures(
+        scene, oneSample, options_.allFeatures, options_.precision, camera.eye,
+        options_.worldTriangles ? deviceLimits(context_.device()).maxTexelBufferElements : 0);
     features.shading[size_t(Shading::Antialias)] = false;
     features.debugPixel = true;
     features.stressOutput = true;

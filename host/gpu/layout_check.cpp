@@ -97,7 +97,9 @@ static_assert(sizeof(GpuTriangle) == 96);
 static_assert(sizeof(GpuCsgNode) == 16);
 
 static_assert(kGpuKinds.size() == KIND_COUNT);
-static_assert(BVH_STACK_SIZE == kMaxBvhDepth, "the shader's BVH stack holds the deepest BVH");
+static_assert(BVH_STACK_SIZE == kMaxBvhDepth,
+              "the shader's BVH stack holds a walk's pending nodes: kMaxBvhDepth + 1 levels, "
+              "the object BVH joined to the world triangles'");
 static_assert(MAX_RECURSION_DEPTH == kMaxRecursionDepth,
               "the shader's ray stack holds the deepest ray tree the reader accepts");
 static_assert(TORUS_MAJOR_RADIUS == kTorusMajorRadius && TORUS_TUBE_RADIUS == kTorusTubeRadius);
