@@ -24,6 +24,7 @@
 #include "util/error.h"
 #include "util/stopwatch.h"
 
+#include <malloc.h>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -406,6 +407,14 @@ void runExperiments(const Options& o, gpu::Context& context) {
 
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
+    // Freed frames (tens of MB) stay in the heap, their pages mapped, so
+    // that every later frame of the run, the CPU reference's and frameCpu's
+    // alike, is allocated the same way: glibc would otherwise map some
+    // afresh (page faults) and reuse others, by what the process did before.
+    // (32 MiB: glibc's largest mapping threshold; a 1920x1080 frame's
+    // largest array is 25 MB.)
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
     // lavapipe's thread count is pinned (as the tests do) unless the caller set it.
     if (!std::getenv("LP_NUM_THREADS"))
         ::setenv("LP_NUM_THREADS", std::to_string(o.threads).c_str(), 1);
