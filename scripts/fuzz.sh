@@ -15,7 +15,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-30}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(sdl_fuzz mesh3vn_fuzz outline_fuzz image_fuzz)
+[ ${#targets[@]} -eq 0 ] && targets=(sdl_fuzz mesh3vn_fuzz mesh_import_fuzz outline_fuzz image_fuzz)
 
 scripts/install-deps.sh
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -46,14 +46,16 @@ seed() {  # seed TARGET FILE...: fresh copies, so a changed source seed is seen
 }
 seed sdl_fuzz "${corpus_scenes[@]}" "${data_scenes[@]}" scenes/*.sdl fuzz/seeds/sdl/*
 seed mesh3vn_fuzz "${corpus_meshes[@]}" tests/data/*.3vn fuzz/seeds/mesh/*
+seed mesh_import_fuzz fuzz/seeds/mesh_import/*
 seed outline_fuzz "${corpus_outlines[@]}" "${data_outlines[@]}" fuzz/seeds/outline/*
 seed image_fuzz fuzz/seeds/image/*
 
 # Per target: longest input, dictionary. Limits keep each run quick; the
 # readers' own limits are tested at full size in the normal test suite.
-declare -A max_len=([sdl_fuzz]=4096 [mesh3vn_fuzz]=4096 [outline_fuzz]=1024 [image_fuzz]=4096)
+declare -A max_len=([sdl_fuzz]=4096 [mesh3vn_fuzz]=4096 [mesh_import_fuzz]=4096
+                    [outline_fuzz]=1024 [image_fuzz]=4096)
 declare -A dict=([sdl_fuzz]=fuzz/sdl.dict [mesh3vn_fuzz]=fuzz/numbers.dict
-                 [outline_fuzz]=fuzz/numbers.dict [image_fuzz]=fuzz/image.dict)
+                 [mesh_import_fuzz]=fuzz/mesh_import.dict [outline_fuzz]=fuzz/numbers.dict [image_fuzz]=fuzz/image.dict)
 
 # Sanitizer reports are fatal; libFuzzer itself checks leaks after each input.
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:print_stacktrace=1:detect_leaks=1"

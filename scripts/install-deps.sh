@@ -8,6 +8,8 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
   glslang-dev glslang-tools spirv-tools
   libglm-dev libstb-dev
+  libassimp-dev  # mesh FILE in OBJ, PLY, glTF 2.0, STL, OFF, ... (host/scene/mesh_import.*)
+  assimp-testmodels  # real model files by others, which the tests render (tests/scene/mesh_import_test.cpp)
   libopenexr-dev  # OpenEXR 3: -o X.exr, --aov X.exr and compare reading .exr
   openexr  # its tools (exrheader): the tests check that they list vkray's layers
   libgtest-dev

@@ -32,7 +32,8 @@ const float ROOT_TOLERANCE = 1e-7;
 // Naive mode's fixed epsilon: the smallest t a hit may have on every ray, and
 // the distance a secondary ray's origin is pushed along the normal. A fixed
 // length cannot suit every scale: at 1e5 from the origin it is below the
-// float spacing (0.0078) and rounds away (NUMERICS.md section 3).
+// float spacing (0.0078) and rounds away (docs/numerics-background.md,
+// "Secondary-ray origins").
 const float NAIVE_EPSILON = 1e-4;
 
 // The origin of a secondary ray (shadow feeler, reflection, refraction)

@@ -276,7 +276,8 @@ const std::vector<FlagSpec>& flagSpecs() {
                  ->type_name("N")
                  ->check(wholeNumberIn(1, 100000000));
          }},
-        {"--cases", "only the cases whose name contains PATTERN",
+        {"--cases",
+         "only the cases PATTERN selects: a glob (tiny*, *sphere?) or a part of the name",
          [](CLI::App& a, Options& o, const std::string& h) {
              return a.add_option("--cases", o.casesPattern, h)->type_name("PATTERN");
          }},

@@ -12,6 +12,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <fnmatch.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -116,6 +118,13 @@ StressCase readStressCase(const std::string& path) {
     return c;
 }
 
+bool caseNameMatches(const std::string& name, const std::string& pattern) {
+    if (pattern.empty()) return true;
+    if (pattern.find_first_of("*?[") != std::string::npos)
+        return ::fnmatch(pattern.c_str(), name.c_str(), 0) == 0;
+    return name.find(pattern) != std::string::npos;
+}
+
 std::vector<StressCase> findStressCases(const std::string& directory, const std::string& pattern) {
     if (!fs::is_directory(directory))
         throw Error("stress cases: '" + directory + "' is not a folder (pass --cases-dir DIR)");
@@ -123,9 +132,7 @@ std::vector<StressCase> findStressCases(const std::string& directory, const std:
     for (const auto& entry : fs::directory_iterator(directory)) {
         const fs::path p = entry.path();
         if (p.extension() != ".sdl") continue;
-        if (!pattern.empty() && pattern != "*" &&
-            p.stem().string().find(pattern) == std::string::npos)
-            continue;
+        if (!caseNameMatches(p.stem().string(), pattern)) continue;
         paths.push_back(p.string());
     }
     std::sort(paths.begin(), paths.end());

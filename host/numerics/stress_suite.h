@@ -52,8 +52,13 @@ struct StressCase {
 
 StressCase readStressCase(const std::string& path);
 
-// The cases of `directory` whose name contains `pattern` ("" or "*": all),
-// sorted by name. Throws Error when none matches.
+// Whether a case's name (its file's stem) is selected by `pattern`: a glob
+// (fnmatch: *, ?, [...]) when it holds one of those, as in ctest and gtest,
+// else a substring of the name. "" selects every case.
+bool caseNameMatches(const std::string& name, const std::string& pattern);
+
+// The cases of `directory` that `pattern` selects (caseNameMatches), sorted
+// by name. Throws Error when none matches.
 std::vector<StressCase> findStressCases(const std::string& directory, const std::string& pattern);
 
 // The modes a row can be: the three GPU precisions and the CPU reference.

@@ -23,10 +23,6 @@ namespace vkray {
 
 namespace {
 
-// Larger files are refused before reading: far beyond any mesh within the
-// count limits, and it keeps a mistaken path (a disk image) from filling memory.
-constexpr std::uint64_t kMaxDataFileBytes = std::uint64_t(2) << 30;
-
 bool isSpace(char c) {
     return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
 }

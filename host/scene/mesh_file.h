@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <span>
@@ -28,6 +29,9 @@ inline constexpr std::size_t kMaxMeshNormals = 20'000'000;
 inline constexpr std::size_t kMaxMeshFaces = 20'000'000;
 inline constexpr std::size_t kMaxMeshCorners = 60'000'000;  // sum of all faces' vertex counts
 inline constexpr std::size_t kMaxOutlinePoints = 1'000'000;
+// Larger files are refused before reading: far beyond any mesh within the
+// count limits, and it keeps a mistaken path (a disk image) from filling memory.
+inline constexpr std::uint64_t kMaxDataFileBytes = std::uint64_t(2) << 30;
 
 // A 3VN mesh as written: polygons (convex in Hill's files) whose corners each
 // name a vertex and a normal. The corner indices of all faces are stored end

@@ -51,18 +51,17 @@ void checkTexture(SceneObject& object, const Scene& scene, bool lenient,
     for (SceneObject& operand : object.operands) checkTexture(operand, scene, lenient, warnings);
     Material& material = object.material;
     const FileLoc& where = material.textureLoc.known() ? material.textureLoc : object.loc;
+    std::string problem;
+    const int index = pixmapIndexOf(material);
     if ((material.texture == 1 || material.texture == 2) && !material.textureParameters.empty() &&
         !(material.textureParameters[0] > 0)) {
         // Cells and rings are measured in it: 0 would divide by zero.
         const char* what = material.texture == 1 ? "checkerboard size" : "wood ring width";
-        throw Error(formatDiagnostic(where, nullptr, "error",
-                                     std::string("texture ") + std::to_string(material.texture) +
-                                         " needs a " + what + " > 0 as its first parameter"));
-    }
-    if (material.texture != 3) return;
-    const int index = pixmapIndexOf(material);
-    std::string problem;
-    if (index < 0) {
+        problem = std::string("texture ") + std::to_string(material.texture) + " needs a " + what +
+                  " > 0 as its first parameter";
+    } else if (material.texture != 3) {
+        return;
+    } else if (index < 0) {
         problem = material.textureParameters.empty()
                       ? "texture 3 needs 'parameters 1 i' naming a 'makePixmap i FILE'; "
                         "there are no parameters"

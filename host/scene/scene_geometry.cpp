@@ -10,6 +10,7 @@
 #include <optional>
 #include <utility>
 
+#include "scene/mesh_import.h"
 #include "scene/pixmaps.h"
 #include "scene/triangle_mesh.h"
 #include "util/error.h"
@@ -59,7 +60,7 @@ public:
             try {
                 loaded.mesh =
                     add(object.type == ShapeType::Extrude ? extrudeOutline(loadOutline(object.file))
-                                                          : meshFrom3vn(load3vn(object.file)));
+                                                          : loadMeshFile(object.file));
             } catch (const Error& e) {
                 loaded.failure = e.what();
             }

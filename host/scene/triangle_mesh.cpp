@@ -13,10 +13,6 @@
 
 namespace vkray {
 
-namespace {
-
-// v / |v|, or false when v is zero or not finite. Scaling by the largest
-// component first keeps |v|^2 from overflowing or underflowing.
 bool normalizeSafely(const glm::dvec3& v, glm::dvec3* unit) {
     const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
     if (!(largest > 0) || !std::isfinite(largest)) return false;
@@ -24,6 +20,8 @@ bool normalizeSafely(const glm::dvec3& v, glm::dvec3* unit) {
     *unit = scaled / glm::length(scaled);
     return true;
 }
+
+namespace {
 
 // Newell's method: the polygon's area-weighted normal, right-handed with the
 // corners' order; robust for non-planar and non-convex polygons.

@@ -63,6 +63,10 @@ inline bool isMeshShape(ShapeType type) {
 
 // ---- building blocks (used by builtInMesh; public for tests) -----------------
 
+// v / |v|, or false when v is zero or not finite. Scaling by the largest
+// component first keeps |v|^2 from overflowing or underflowing.
+bool normalizeSafely(const glm::dvec3& v, glm::dvec3* unit);
+
 // The convex hull of `vertices` as a closed mesh with one flat outward normal
 // per face; coplanar vertices form one polygon face, fanned into triangles.
 // Meant for the small point sets of the built-in solids (O(n^4)).

@@ -26,7 +26,11 @@ std::string writtenName(const FileLoc& loc, const std::string& resolvedPath) {
         const std::filesystem::path folder = std::filesystem::path(*loc.file).parent_path();
         const std::filesystem::path relative =
             std::filesystem::path(resolvedPath).lexically_relative(folder);
-        if (!relative.empty()) return relative.string();
+        // An absolute name far from the scene ("/usr/share/x.obj") reads
+        // better as written than as a climb out of the scene's folder.
+        const bool climbsOut = relative.begin() != relative.end() && *relative.begin() == "..";
+        if (!relative.empty() && !(climbsOut && relative.string().size() >= resolvedPath.size()))
+            return relative.string();
     }
     return resolvedPath;
 }

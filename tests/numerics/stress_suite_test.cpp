@@ -272,6 +272,24 @@ TEST(StressSuite, HasTheCasesTheIssueAsksFor) {
     EXPECT_THROW(findStressCases(kCasesDir + "/missing", ""), Error);
 }
 
+// --cases takes globs as ctest and gtest do, and plain parts of names as before.
+TEST(StressSuite, CasesAreSelectedByGlobOrByPartOfTheName) {
+    EXPECT_TRUE(caseNameMatches("tiny_sphere", ""));
+    EXPECT_TRUE(caseNameMatches("tiny_sphere", "*"));
+    EXPECT_TRUE(caseNameMatches("tiny_sphere", "tiny*"));
+    EXPECT_TRUE(caseNameMatches("tiny_sphere", "*_sphere"));
+    EXPECT_TRUE(caseNameMatches("tiny_sphere", "tiny_spher?"));
+    EXPECT_TRUE(caseNameMatches("tiny_sphere", "[st]iny*"));
+    EXPECT_TRUE(caseNameMatches("tiny_sphere", "sphere"));    // a part of the name
+    EXPECT_FALSE(caseNameMatches("tiny_sphere", "sphere*"));  // a glob matches the whole name
+    EXPECT_FALSE(caseNameMatches("tiny_sphere", "huge"));
+    EXPECT_EQ(findStressCases(kCasesDir, "tiny*").size(), 1u);
+    EXPECT_EQ(findStressCases(kCasesDir, "torus_*").size(), 2u);  // not thin_torus
+    EXPECT_EQ(findStressCases(kCasesDir, "*_1e5").size(), 2u);
+    EXPECT_EQ(findStressCases(kCasesDir, "tiny").size(), 1u);
+    EXPECT_THROW(findStressCases(kCasesDir, "tiny?"), Error);
+}
+
 class StressHeader : public ::testing::Test {
 protected:
     std::string write(const std::string& text) {

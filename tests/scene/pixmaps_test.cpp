@@ -160,6 +160,20 @@ TEST(TextureWord, CellSizeAndRingWidthMustBePositive) {
     EXPECT_NO_THROW(load("texture 1 parameters 1 0.25 cube texture 2 sphere"));
 }
 
+// Lenient: a course scene's negative checker size warns with its place and
+// the shape is drawn untextured, as with an unusable pixmap.
+TEST(TextureWord, LenientDrawsAShapeWithAnUnusableSizeUntextured) {
+    std::vector<std::string> warnings;
+    const Scene scene = load("sphere\ntexture 1 parameters 4 -1 -1 1 1 cube", true, &warnings);
+    ASSERT_EQ(scene.objects.size(), 2u);
+    EXPECT_EQ(scene.objects[1].material.texture, 0);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0], kSceneFile +
+                               ":2:1: warning: texture 1 needs a checkerboard size > 0 as its "
+                               "first parameter; the 'cube' at " +
+                               kSceneFile + ":2:34 is drawn untextured");
+}
+
 TEST(MaxRecursionDepth, IsBoundedByTheGpuStack) {
     EXPECT_EQ(parseSdl("maxRecursionDepth 64", "t.sdl", {}).maxRecursionDepth, kMaxRecursionDepth);
     EXPECT_EQ(errorOf([] { parseSdl("light 1 2 3 1 1 1\nmaxRecursionDepth 65", "t.sdl", {}); }),
