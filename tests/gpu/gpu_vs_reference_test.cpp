@@ -101,7 +101,10 @@ void printAgreement(const std::string& what, const Agreement& a) {
 struct SceneFile {
     std::string path;  // for a corpus scene, its name in the corpus
     bool inCorpus = false;
+    bool readsTestmodels = false;  // names files of Debian's assimp-testmodels
 };
+
+const char* const kTestmodels = "/usr/share/assimp/models";
 
 // gtest's name for a case in its messages (else it prints the struct's bytes).
 void PrintTo(const SceneFile& file, std::ostream* out) {
@@ -112,6 +115,9 @@ class GpuVsReference : public ::testing::TestWithParam<SceneFile> {};
 
 TEST_P(GpuVsReference, AgreeWithinStatedBounds) {
     if (GetParam().inCorpus) VKRAY_NEED_CORPUS();
+    if (GetParam().readsTestmodels && !fs::is_directory(kTestmodels))
+        GTEST_SKIP() << kTestmodels << " is missing: install Debian's assimp-testmodels "
+                     << "(scripts/install-deps.sh does)";
     const std::string path =
         GetParam().inCorpus ? test::corpusFile(GetParam().path) : GetParam().path;
     std::vector<std::string> warnings;
@@ -161,6 +167,8 @@ std::vector<SceneFile> dataScenes() {
     std::vector<SceneFile> files;
     for (const char* name : {"gallery.dat", "kitchen.dat", "tower.dat", "world_triangles.sdl"})
         files.push_back({test::kDataDir + "/" + name});
+    // OBJ and glTF files by others, through Assimp.
+    files.push_back({test::kDataDir + "/real_models.sdl", false, true});
     return files;
 }
 
