@@ -3,6 +3,7 @@
 #include "app/data_folder.h"
 #include "dist/mpi_world.h"
 #include "image/image_io.h"
+#include "numerics/envelope.h"
 #include "render/camera.h"
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
@@ -70,6 +71,52 @@ gpu::GpuRenderOptions gpuRenderOptions(const Options& o) {
             .precision = o.precision};
 }
 
+PrecisionInForce precisionInForce(const Scene& scene, const CameraBasis& camera, const Options& o,
+                                  std::ostream& out, std::ostream& err) {
+    PrecisionInForce force;
+    std::vector<EnvelopeExcess> beyond;
+    if (o.precisionGiven) {
+        force.precision = o.precision;
+        beyond = envelopeExcesses(scene, camera, o.precision);
+        // An explicit mode means exactly that mode; the warning says what it misses.
+        if (!beyond.empty())
+            err << "vkray: warning: " << describe(beyond.front(), o.precision)
+                << (beyond.size() > 1 ? " (and " + std::to_string(beyond.size() - 1) + " more)"
+                                      : std::string())
+                << "; the GPU may differ from the CPU reference there (docs/numerics.md, "
+                   "\"Envelope\")\n";
+        if (!beyond.empty() && o.precision != Precision::Fp64 &&
+            envelopeExcesses(scene, camera, Precision::Fp64).empty())
+            err << "vkray: note: --precision fp64 (or auto) is inside its envelope here\n";
+        beyond = envelopeExcesses(scene, camera, Precision::Fp64);
+    } else {
+        const PrecisionChoice choice = choosePrecision(scene, camera);
+        force.precision = choice.precision;
+        if (choice.outside.empty()) {
+            out << "precision: auto chose robust (the scene is inside robust's envelope)\n";
+        } else {
+            out << "precision: auto chose fp64: "
+                << describe(choice.outside.front(), Precision::Robust)
+                << (choice.outside.size() > 1
+                        ? " (and " + std::to_string(choice.outside.size() - 1) + " more)"
+                        : std::string())
+                << "\n";
+        }
+        beyond = choice.beyondEvery;
+        if (!beyond.empty())
+            err << "vkray: warning: " << describe(beyond.front(), Precision::Fp64)
+                << (beyond.size() > 1 ? " (and " + std::to_string(beyond.size() - 1) + " more)"
+                                      : std::string())
+                << "; no precision mode is documented to agree with the CPU reference there "
+                   "(docs/numerics.md, \"Envelope\")\n";
+    }
+    if (!beyond.empty()) {
+        force.comparable = false;
+        force.why = describe(beyond.front(), Precision::Fp64);
+    }
+    return force;
+}
+
 Scene loadSceneFor(const Options& o, std::ostream& err) {
     std::vector<std::string> warnings;
     Scene scene = loadScene(o.scenePath, {o.lenient}, &warnings);
@@ -100,6 +147,7 @@ gpu::GpuTracer& GpuSession::tracerFor(const Options& o, std::ostream& out) {
             << device.driverInfo << ")\n";
         tracer = std::make_unique<gpu::GpuTracer>(*context, gpuRenderOptions(o));
     }
+    tracer->setPrecision(o.precision);  // --precision auto may choose anew on a reload
     return *tracer;
 }
 

@@ -7,6 +7,7 @@
 #include "app/options.h"
 #include "gpu/context.h"
 #include "gpu/gpu_tracer.h"
+#include "render/camera.h"
 #include "scene/scene.h"
 
 #include <iosfwd>
@@ -28,6 +29,21 @@ Scene loadSceneFor(const Options& options, std::ostream& err);
 Camera chooseCamera(const Scene& scene, const Options& options);
 // The GPU tracer's options (shaders, variant, -D, precision).
 gpu::GpuRenderOptions gpuRenderOptions(const Options& options);
+// The precision a render of this scene from this camera runs in: the
+// explicit --precision, or for auto robust where the scene is inside robust's
+// envelope and fp64 where it is not (numerics/envelope.h). Prints the choice
+// and what forced it to `out` ("precision: auto chose fp64: the 'sphere' at
+// s.sdl:3:1 is ..."), and to `err` a warning where the scene passes the
+// envelope of the mode in force (for auto: fp64's, beyond every mode's).
+// `comparable` is false where the scene passes every mode's envelope:
+// --check then reports the verdict as not comparable.
+struct PrecisionInForce {
+    Precision precision = Precision::Robust;
+    bool comparable = true;
+    std::string why;  // what passes every mode's envelope, when not comparable
+};
+PrecisionInForce precisionInForce(const Scene& scene, const CameraBasis& camera,
+                                  const Options& options, std::ostream& out, std::ostream& err);
 // The files a render reads besides the shaders: the scene and what it names.
 std::vector<std::string> sceneInputs(const Options& options);
 // Fails before rendering when an output could never be written (`what`: the flag).

@@ -6,6 +6,7 @@
 #include "gpu/spirv_cache.h"
 
 #include <ostream>
+#include <sstream>
 
 namespace vkray {
 
@@ -14,13 +15,20 @@ int runFeatures(const Options& o, std::ostream& out, std::ostream& err) {
     RenderSettings settings;
     settings.spp = o.spp;
     settings.aovs = false;  // as `render` without --aov
-    const gpu::ShaderFeatures features = gpu::variantFeatures(
-        scene, settings, o.allFeatures, o.precision, chooseCamera(scene, o).eye,
-        std::numeric_limits<std::uint64_t>::max());  // no device here
+    const Camera camera = chooseCamera(scene, o);
+    // The precision `render` would run in, and why; its line goes after the report's.
+    std::ostringstream choice;
+    const Precision precision =
+        precisionInForce(scene, makeCameraBasis(camera, o.width, o.height), o, choice, err)
+            .precision;
+    const gpu::ShaderFeatures features =
+        gpu::variantFeatures(scene, settings, o.allFeatures, precision, camera.eye,
+                             std::numeric_limits<std::uint64_t>::max());  // no device here
     const gpu::ShaderSource source =
-        gpu::variantSource(shaderDirectoryFor(o), features, o.precision, o.defines);
-    out << formatFeatureReport(scene, settings, features, o.precision, source.defines,
-                               gpu::spirvCacheKey(source));
+        gpu::variantSource(shaderDirectoryFor(o), features, precision, o.defines);
+    out << formatFeatureReport(scene, settings, features, precision, source.defines,
+                               gpu::spirvCacheKey(source))
+        << choice.str();
     return 0;
 }
 

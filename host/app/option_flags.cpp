@@ -243,11 +243,14 @@ const std::vector<FlagSpec>& flagSpecs() {
          [](CLI::App& a, Options& o, const std::string& h) {
              return a.add_flag("--all", o.everyVariant, h);
          }},
-        {"--precision", "naive, robust (default) or fp64: float care on the GPU (docs/numerics.md)",
+        {"--precision",
+         "auto (default: robust, or fp64 where the scene is outside robust's envelope), naive, "
+         "robust or fp64: float care on the GPU (docs/numerics.md)",
          [](CLI::App& a, Options& o, const std::string& h) {
              return valueFlag(a, "--precision", h, "MODE", [&o](const std::string& v) {
-                 o.precision = parsePrecision("--precision", v);
-                 o.precisionGiven = true;
+                 o.precisionGiven = v != "auto";
+                 o.precision =
+                     o.precisionGiven ? parsePrecision("--precision", v) : Precision::Robust;
              });
          }},
         {"--out", "where the outputs go",

@@ -72,7 +72,8 @@ struct Options {
     std::string screenshotPath;  // --screenshot FILE: with --frames, the last frame saved there
     std::string eventsPath;      // --events FILE: input replayed (app/view_events.h)
 
-    // render, pixel: --precision naive|robust|fp64 (gpu/precision.h)
+    // render, pixel: --precision auto|naive|robust|fp64 (gpu/precision.h);
+    // auto (precisionGiven false) is resolved per scene by precisionInForce.
     Precision precision = Precision::Robust;
     bool precisionGiven = false;
 

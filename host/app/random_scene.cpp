@@ -438,34 +438,6 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
 
 }  // namespace
 
-SceneEnvelope envelopeOf(Precision precision) {
-    // docs/numerics.md, "Envelope". A lone object, as its sweeps measured:
-    // robust to 1.6e4 radii seen from any direction (textures while
-    // |M^-1 eye| / cell <= 5e3), a squash after the rotation to 1e-4 seen
-    // from a few sizes, one before it to 1e-8, a huge sphere seen from close
-    // to R / H = 1e7; fp64 to 1e6 radii (cells of 0.05 there), 1e-10,
-    // R / H = 2e7.
-    // Several objects, as `vkray difftest` measured them (secondary rays
-    // between objects start an offset off the surface that grows with the
-    // eye's distance). Every scene keeps the eye within 1e6 of the world's
-    // origin, where the CPU reference's own hit points still clear its
-    // offset. Glass is held to 5e3 times the offset its refracted rays start
-    // at: robust's 2^-18 of the distance; fp64's is the CPU reference's 2^-32
-    // (shading.cpp), not the shader's far smaller 2^-47. Naive, the
-    // textbook's float, keeps to ordinary views.
-    const EnvelopeLimits naive{400, 400, 400, 1e6, 0.05, 0.05, 0, 0.02};
-    switch (precision) {
-    case Precision::Naive: return {naive, naive};
-    case Precision::Robust:
-        return {{2e3, 2e3, 2e3, 1e6, 2e-3, 2e-3, 1e5, 0.02},
-                {1.6e4, 7 / 1e-8, 5e3, 1e6, 1e-4, 1e-8, 1e7, 0}};
-    case Precision::Fp64:
-        return {{1e6, 4.3e10, 2e7, 1e6, 1e-10, 1e-8, 2e7, 0.02 * 0x1p-14},
-                {1e6, 7 / 1e-10, 2e7, 1e6, 1e-10, 1e-8, 2e7, 0}};
-    }
-    return {naive, naive};
-}
-
 RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
     Draw d(seed);
     RandomScene r;

@@ -9,43 +9,13 @@
 #pragma once
 
 #include "gpu/precision.h"
+#include "numerics/envelope.h"
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace vkray {
-
-// The limits a drawn scene stays within, by precision mode. A distance in
-// object sizes is |eye - centre| over the object's largest scale; |M^-1 eye|
-// is the eye's distance in the object's generic space.
-struct EnvelopeLimits {
-    double farthestEye;          // object sizes, for objects not squashed
-    double farthestGeneric;      // |M^-1 eye| of a squashed object
-    double farthestPerCell;      // |M^-1 eye| over a textured object's cell or ring width
-    double farthestWorldEye;     // |eye| in world units (the CPU reference's own limit)
-    double smallestSquash;       // the ratio of an object's scales, squashed between rotations
-    double smallestInnerSquash;  // the same, squashed before its only rotation
-    double largestNearRatio;     // R / H: a huge object of size R seen from H above it
-    // A solid that refracts (transparency above minTransparency): its
-    // smallest scale over its distance from the eye at least this; its
-    // refracted rays start a step inside it that grows with that distance.
-    double thinnestPerDistance;
-};
-
-// Two families of scenes, each with its limits (docs/numerics.md,
-// "Envelope"): scenes of several objects of every kind, with every material
-// word; and a lone object as the envelope's sweeps place it (a sphere far
-// away, plain or checkered; a cube, sphere, icosahedron or teapot squashed
-// after or before its rotation; a huge sphere, cylinder or torus, or a mirror
-// floor, seen from close), opaque, to the figures the sweeps measured. Every
-// mode draws the same shapes and materials; fp64's figures go further.
-struct SceneEnvelope {
-    EnvelopeLimits scenes;
-    EnvelopeLimits lone;
-};
-
-SceneEnvelope envelopeOf(Precision precision);
 
 // How far into its envelope a drawn scene reaches (each figure the most any
 // of its objects reaches; 0, or 1 for the squashes, when none does), in the

@@ -147,9 +147,14 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
         << (o.spp > 1 ? ", " + std::to_string(o.spp) + " spp, seed " + std::to_string(o.seed)
                       : std::string())
         << std::endl;  // before the progress display starts
+    // The options with --precision auto resolved for this scene and camera.
+    Options run = o;
+    PrecisionInForce force;
+    if (!o.cpu || o.check) force = precisionInForce(scene, camera, o, out, err);
+    run.precision = force.precision;
 
-    Frame frame = o.cpu ? renderCpu(scene, camera, settings, o, out, err)
-                        : renderGpu(scene, camera, settings, o, session, out, err);
+    Frame frame = o.cpu ? renderCpu(scene, camera, settings, run, out, err)
+                        : renderGpu(scene, camera, settings, run, session, out, err);
     if (dist::World::current().rank() != 0) return 0;  // rank 0 has the frame
     bool passed = true;
     // Every output is written in full beside its destination, then all are
@@ -163,6 +168,9 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
         out << "gpu vs cpu reference:\n";
         passed = compareAndReport(colorImage(frame), colorImage(reference), &idsGpu, &idsCpu,
                                   tolerance, o.diffPath, files, out);
+        if (!force.comparable)
+            out << "verdict         not comparable: " << force.why
+                << "; the result above is not counted (exit status 3)\n";
     }
 
     if (stopRequested()) throw Interrupted();
@@ -180,6 +188,7 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
     if (!o.diffPath.empty()) out << "wrote " << o.diffPath << "\n";
     if (!imageInAovs) out << "wrote " << output << "\n";
     if (!o.aovPrefix.empty()) out << "wrote " << aovFilesText(o.aovPrefix) << "\n";
+    if (o.check && !force.comparable) return 3;
     return passed ? 0 : 2;
 }
 

@@ -197,7 +197,10 @@ private:
         try {
             Scene scene = loadSceneFor(o_, err_);
             const Camera camera = chooseCamera(scene, o_);
-            makeCameraBasis(camera, o_.width, o_.height);  // refused here, at its place
+            // Refused here, at its place; --precision auto chooses from the
+            // scene's own camera at each load, not at each move of the view.
+            const CameraBasis basis = makeCameraBasis(camera, o_.width, o_.height);
+            tracer_.setPrecision(precisionInForce(scene, basis, o_, out_, err_).precision);
             if (first || !sameCamera(camera, sceneCamera_)) camera_ = camera;
             sceneCamera_ = camera;
             scene_ = std::move(scene);

@@ -118,6 +118,10 @@ class GpuTracer {
 public:
     GpuTracer(Context& context, GpuRenderOptions options);
 
+    // The precision mode of the renders from now on (`--precision auto`
+    // chooses it per scene).
+    void setPrecision(Precision precision) { options_.precision = precision; }
+
     ~GpuTracer();
 
     // Checks the scene against the device's limits before allocating (an

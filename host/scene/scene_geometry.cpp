@@ -148,8 +148,8 @@ Aabb unboundedBox() {
     return Aabb{glm::dvec3(-kInfinity), glm::dvec3(kInfinity)};
 }
 
-// The generic shape's box in its own space; nullopt when it has none (a
-// plane, or a mesh not loaded yet).
+}  // namespace
+
 std::optional<Aabb> genericBounds(const SceneObject& object, const Scene& scene) {
     switch (object.type) {
     case ShapeType::Sphere:
@@ -174,6 +174,8 @@ std::optional<Aabb> genericBounds(const SceneObject& object, const Scene& scene)
         return std::nullopt;
     }
 }
+
+namespace {
 
 // pbrt's bound on the rounding of a transformed point: gamma(3) times the
 // sum of the magnitudes that went into each coordinate

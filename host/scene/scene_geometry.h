@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,10 @@ void loadSceneGeometry(Scene& scene, bool lenient, std::vector<std::string>* war
 // Parse + loadSceneGeometry: what `vkray render` does.
 Scene loadScene(const std::string& path, const SdlOptions& options,
                 std::vector<std::string>* warnings);
+
+// The generic shape's box in its own space (the boxes listed below);
+// nullopt when it has none (a plane, a boolean, or a mesh not loaded yet).
+std::optional<Aabb> genericBounds(const SceneObject& object, const Scene& scene);
 
 // World bounds: the generic shape's box through M (its 8 corners), each
 // corner widened by pbrt's bound on its rounding (gamma(3) times the
