@@ -15,7 +15,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-30}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(sdl_fuzz mesh3vn_fuzz mesh_import_fuzz outline_fuzz image_fuzz)
+[ ${#targets[@]} -eq 0 ] && targets=(sdl_fuzz mesh3vn_fuzz outline_fuzz image_fuzz)
 
 scripts/install-deps.sh
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -60,6 +60,7 @@ declare -A dict=([sdl_fuzz]=fuzz/sdl.dict [mesh3vn_fuzz]=fuzz/numbers.dict
 # Sanitizer reports are fatal; libFuzzer itself checks leaks after each input.
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:print_stacktrace=1:detect_leaks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
 
 failed=0
 summary=()
