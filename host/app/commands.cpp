@@ -71,42 +71,45 @@ gpu::GpuRenderOptions gpuRenderOptions(const Options& o) {
             .precision = o.precision};
 }
 
+namespace {
+
+// The first excess, and how many more there are.
+std::string firstOf(const std::vector<EnvelopeExcess>& excesses, Precision precision) {
+    return describe(excesses.front(), precision) +
+           (excesses.size() > 1 ? " (and " + std::to_string(excesses.size() - 1) + " more)"
+                                : std::string());
+}
+
+}  // namespace
+
 PrecisionInForce precisionInForce(const Scene& scene, const CameraBasis& camera, const Options& o,
                                   std::ostream& out, std::ostream& err) {
     PrecisionInForce force;
-    std::vector<EnvelopeExcess> beyond;
+    std::vector<EnvelopeExcess> beyond;  // fp64's envelope's
     if (o.precisionGiven) {
-        force.precision = o.precision;
-        beyond = envelopeExcesses(scene, camera, o.precision);
         // An explicit mode means exactly that mode; the warning says what it misses.
-        if (!beyond.empty())
-            err << "vkray: warning: " << describe(beyond.front(), o.precision)
-                << (beyond.size() > 1 ? " (and " + std::to_string(beyond.size() - 1) + " more)"
-                                      : std::string())
+        force.precision = o.precision;
+        beyond = envelopeExcesses(scene, camera, Precision::Fp64);
+        const std::vector<EnvelopeExcess> missed =
+            o.precision == Precision::Fp64 ? beyond : envelopeExcesses(scene, camera, o.precision);
+        if (!missed.empty()) {
+            err << "vkray: warning: " << firstOf(missed, o.precision)
                 << "; the GPU may differ from the CPU reference there (docs/numerics.md, "
                    "\"Envelope\")\n";
-        if (!beyond.empty() && o.precision != Precision::Fp64 &&
-            envelopeExcesses(scene, camera, Precision::Fp64).empty())
-            err << "vkray: note: --precision fp64 (or auto) is inside its envelope here\n";
-        beyond = envelopeExcesses(scene, camera, Precision::Fp64);
+            if (beyond.empty())
+                err << "vkray: note: --precision fp64 (or auto) is inside its envelope here\n";
+        }
     } else {
         const PrecisionChoice choice = choosePrecision(scene, camera);
         force.precision = choice.precision;
-        if (choice.outside.empty()) {
+        if (choice.outside.empty())
             out << "precision: auto chose robust (the scene is inside robust's envelope)\n";
-        } else {
-            out << "precision: auto chose fp64: "
-                << describe(choice.outside.front(), Precision::Robust)
-                << (choice.outside.size() > 1
-                        ? " (and " + std::to_string(choice.outside.size() - 1) + " more)"
-                        : std::string())
+        else
+            out << "precision: auto chose fp64: " << firstOf(choice.outside, Precision::Robust)
                 << "\n";
-        }
         beyond = choice.beyondEvery;
         if (!beyond.empty())
-            err << "vkray: warning: " << describe(beyond.front(), Precision::Fp64)
-                << (beyond.size() > 1 ? " (and " + std::to_string(beyond.size() - 1) + " more)"
-                                      : std::string())
+            err << "vkray: warning: " << firstOf(beyond, Precision::Fp64)
                 << "; no precision mode is documented to agree with the CPU reference there "
                    "(docs/numerics.md, \"Envelope\")\n";
     }
