@@ -50,6 +50,15 @@ BenchOptions parseBenchOptions(const std::vector<std::string>& args, const Bench
         ->type_name("FILE.sdl")
         ->allow_extra_args(false)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--random", o.randomScenes,
+                   "N scenes drawn by `vkray difftest`'s generator (inside the envelope), each "
+                   "traced primary and shaded, with min / median / max of the ratios; alone, "
+                   "instead of the default list")
+        ->check(CLI::Range(1, 100000));
+    app.add_option("--seed", o.seed,
+                   "the random set's first seed, the others following it (default: a fresh "
+                   "one, printed)")
+        ->type_name("S");
     app.add_option_function<std::string>(
            "--size", [&o](const std::string& v) { parseSize("--size", v, o.width, o.height); },
            "image size (default 1920x1080)")
@@ -108,7 +117,9 @@ BenchOptions parseBenchOptions(const std::vector<std::string>& args, const Bench
         o.allHeight = o.height;
     }
     o.sceneNames.clear();
-    if (scenes->count() == 0 && !o.sceneFiles.empty()) names.clear();
+    if (scenes->count() == 0 && (!o.sceneFiles.empty() || o.randomScenes > 0)) names.clear();
+    if (o.seed && o.randomScenes == 0)
+        throw Error("--seed: the seed of --random's scenes; give --random N too");
     for (size_t start = 0; start <= names.size();) {
         size_t comma = std::min(names.find(',', start), names.size());
         const std::string name = names.substr(start, comma - start);

@@ -2,6 +2,8 @@
 // from the harness so that the tests can call the parser.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +12,9 @@ namespace vkray::bench {
 struct BenchOptions {
     std::vector<std::string> sceneNames;  // --scenes a,b,...: names from the harness's list
     std::vector<std::string> sceneFiles;  // --scene FILE.sdl (repeatable)
+    int randomScenes = 0;                 // --random N: scenes drawn by difftest's generator
+    std::optional<std::uint32_t>
+        seed;  // --seed S: the first one's seed, as difftest's (none: a fresh one)
     int width = 1920, height = 1080;
     int repeat = 2;
     int threads = 2;

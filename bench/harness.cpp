@@ -10,6 +10,7 @@
 //   LP_NUM_THREADS=2 build/vkray_bench [--size WxH] [--scenes a,b,...] ...
 // (--help lists the options and scenes). Not a test: built with
 // -DVKRAY_BENCHMARKS=ON; Embree only where CMake finds it.
+#include "app/random_scene.h"
 #include "bench/bench_options.h"
 #include "bench/bench_scenes.h"
 #include "bench/fma_peak.h"
@@ -18,13 +19,16 @@
 #endif
 #include "gpu/context.h"
 #include "gpu/gpu_tracer.h"
+#include "numerics/envelope.h"
 #include "reference/reference_tracer.h"
 #include "render/camera.h"
 #include "scene/scene_geometry.h"
 #include "util/error.h"
+#include "util/files.h"
 #include "util/stopwatch.h"
 
 #include <malloc.h>
+#include <stdlib.h>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -33,6 +37,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <thread>
 
@@ -45,6 +50,7 @@ struct BenchScene {
     std::string description;
     std::function<Scene()> make;
     bool sphereOnly = false;
+    bool random = false;  // drawn by difftest's generator: traced primary and shaded
 };
 
 std::vector<BenchScene> knownScenes() {
@@ -74,7 +80,30 @@ const char* kDefaultScenes =
 // The options, with the scenes resolved to what the harness traces.
 struct Options : bench::BenchOptions {
     std::vector<BenchScene> scenes;
+    std::uint32_t firstSeed = 0;  // of the random set, when --random drew one
 };
+
+// --random's scenes, written into a fresh folder (difftest's generator names
+// a 3VN file to be beside the scene): seeds first .. first + n - 1, the same
+// scenes `vkray difftest --seed FIRST --scenes N` draws.
+std::vector<BenchScene> randomSet(std::uint32_t first, int n) {
+    char folder[] = "/tmp/vkray_bench-XXXXXX";
+    if (!::mkdtemp(folder)) throw Error("could not make a folder in /tmp for --random's scenes");
+    std::vector<BenchScene> scenes;
+    for (int i = 0; i < n; ++i) {
+        const std::uint64_t seed = std::uint64_t(first) + std::uint64_t(i);
+        const RandomScene r = randomScene(seed);
+        const std::string path = std::string(folder) + "/seed-" + std::to_string(seed) + ".sdl";
+        writeFileAtomically(path, r.sdl);
+        if (!r.meshFile.empty())
+            writeFileAtomically(std::string(folder) + "/" + r.meshFile, r.meshText);
+        BenchScene scene{"seed-" + std::to_string(seed), "seed " + std::to_string(seed),
+                         [path] { return loadScene(path, {}, nullptr); }};
+        scene.random = true;
+        scenes.push_back(scene);
+    }
+    return scenes;
+}
 
 // Prints the usage and exits 0 for --help; exits 1 with the error on bad usage.
 Options parse(int argc, char** argv) {
@@ -111,6 +140,21 @@ Options parse(int argc, char** argv) {
     }
     for (const std::string& file : o.sceneFiles)
         o.scenes.push_back({file, file, [file] { return bench::sdlScene(file); }});
+    if (o.randomScenes > 0) {
+        // A fresh seed unless one was given, so that no recorded run is of
+        // scenes the kernel was tuned on; room left for the set's seeds.
+        std::random_device fresh;
+        o.firstSeed = o.seed ? *o.seed
+                             : std::uint32_t(std::uint64_t(fresh()) %
+                                             (0x100000000ull - std::uint64_t(o.randomScenes)));
+        try {
+            for (BenchScene& scene : randomSet(o.firstSeed, o.randomScenes))
+                o.scenes.push_back(std::move(scene));
+        } catch (const Error& e) {
+            std::fprintf(stderr, "vkray_bench: error: %s\n", e.what());
+            std::exit(1);
+        }
+    }
     return o;
 }
 
@@ -168,30 +212,19 @@ Timing timed(F&& work) {
     return {wall.seconds(), processCpuSeconds() - cpu};
 }
 
-// CPU time of allocating a zeroed Frame (tens of MB at 1920x1080: page
-// faults and zeroing), which the CPU reference pays before tracing; taken out
-// of its CPU-time figure, as the GPU's dispatch loop leaves it out too.
-double frameCpu(int width, int height) {
-    double best = 1e30;
-    for (int r = 0; r < 2; ++r)
-        best = std::min(best, timed([&] {
-                                  const Frame frame(width, height);
-                                  volatile float sink =
-                                      frame.color.back().x;  // keep the allocation
-                                  (void)sink;
-                              }).cpu);
-    return best;
-}
-
 // The engines of the table, in its column order.
-enum Engine { kGpu, kAllFeatures, kCpuReference, kEmbree1, kEmbree8, kEngines };
+enum Engine { kGpu, kGpuEveryGroup, kAllFeatures, kCpuReference, kEmbree1, kEmbree8, kEngines };
 
 struct Row {
     std::string name, description, variant;
     std::size_t objects = 0;
-    bool sphereOnly = false;
-    std::optional<Timing> time[kEngines];
-    std::string idsGpu = "-", idsEmbree = "-", builds;
+    bool sphereOnly = false, random = false, shaded = false;
+    std::string refused;  // the GPU's refusal (beyond the loop-turn bound): nothing timed
+    // The trace alone, and the scene's preparation before it (GPU: inputs,
+    // BVHs, cover, uploads; CPU reference: the frame and its BVH; Embree:
+    // its build), each the best of the runs.
+    std::optional<Timing> time[kEngines], prepare[kEngines];
+    std::string idsGpu = "-", idsEmbree = "-";
     std::string groupsTraced = "-";  // the specialised variant's workgroups dispatched, of all
     std::optional<Timing> smallGpu;  // the specialised variant on the all-features variant's image
     // The specialised variant's best device time (timestamp queries) and the
@@ -212,6 +245,13 @@ std::optional<double> mrays(const std::optional<Timing>& time, double rays, bool
 std::optional<double> mrays(const Row& row, Engine e, RayCounts rays, bool cpuTime) {
     return mrays(row.time[e], e == kAllFeatures ? rays.small : rays.full, cpuTime);
 }
+// The same, over preparation and trace together.
+std::optional<double> mraysWithPreparation(const Row& row, Engine e, RayCounts rays, bool cpuTime) {
+    if (!row.time[e] || !row.prepare[e]) return std::nullopt;
+    return mrays(
+        Timing{row.time[e]->wall + row.prepare[e]->wall, row.time[e]->cpu + row.prepare[e]->cpu},
+        rays.full, cpuTime);
+}
 // Specialised over all-features, both on the all-features variant's image.
 std::optional<double> specialisedOverAll(const Row& row, RayCounts rays, bool cpuTime) {
     const auto gpu = mrays(row.smallGpu, rays.small, cpuTime);
@@ -219,24 +259,129 @@ std::optional<double> specialisedOverAll(const Row& row, RayCounts rays, bool cp
     if (!gpu || !all) return std::nullopt;
     return *gpu / *all;
 }
+std::optional<double> over(std::optional<double> a, std::optional<double> b) {
+    if (!a || !b) return std::nullopt;
+    return *a / *b;
+}
+// The faster of Embree's two columns.
+std::optional<double> embreeBest(const Row& row, RayCounts rays, bool cpuTime) {
+    const auto e1 = mrays(row, kEmbree1, rays, cpuTime), e8 = mrays(row, kEmbree8, rays, cpuTime);
+    if (!e1 || !e8) return std::nullopt;
+    return std::max(*e1, *e8);
+}
+
+std::string seconds(const std::optional<Timing>& time) {
+    if (!time) return "-";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", time->wall);
+    return text;
+}
 
 void printTable(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
     std::printf(
-        "| scene | objects | variant | GPU | all-features | CPU ref | Embree 1 | Embree 8 "
-        "| GPU/all | GPU/CPU | GPU/Embree |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+        "| scene | objects | variant | GPU | GPU, every workgroup | all-features | CPU ref "
+        "| Embree 1 | Embree 8 | GPU/all | GPU/CPU | every workgroup/CPU | GPU/Embree "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const Row& r : rows) {
+        if (!r.refused.empty()) {
+            std::printf("| %s | %zu | refused: %s |\n", r.description.c_str(), r.objects,
+                        r.refused.c_str());
+            continue;
+        }
         std::optional<double> m[kEngines];
         for (int e = 0; e < kEngines; ++e) m[e] = mrays(r, Engine(e), rays, cpuTime);
-        const std::optional<double> embree =
-            m[kEmbree1] && m[kEmbree8] ? std::optional(std::max(*m[kEmbree1], *m[kEmbree8]))
-                                       : std::nullopt;
-        std::printf("| %s | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+        std::printf("| %s | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
                     r.description.c_str(), r.objects, r.variant.c_str(), rate(m[kGpu]).c_str(),
-                    rate(m[kAllFeatures]).c_str(), rate(m[kCpuReference]).c_str(),
-                    rate(m[kEmbree1]).c_str(), rate(m[kEmbree8]).c_str(),
-                    rate(specialisedOverAll(r, rays, cpuTime)).c_str(),
-                    ratio(m[kGpu], m[kCpuReference]).c_str(), ratio(m[kGpu], embree).c_str());
+                    rate(m[kGpuEveryGroup]).c_str(), rate(m[kAllFeatures]).c_str(),
+                    rate(m[kCpuReference]).c_str(), rate(m[kEmbree1]).c_str(),
+                    rate(m[kEmbree8]).c_str(), rate(specialisedOverAll(r, rays, cpuTime)).c_str(),
+                    ratio(m[kGpu], m[kCpuReference]).c_str(),
+                    ratio(m[kGpuEveryGroup], m[kCpuReference]).c_str(),
+                    rate(over(m[kGpu], embreeBest(r, rays, cpuTime))).c_str());
     }
+}
+
+// Each side's preparation, timed apart from its trace, and the GPU/CPU
+// ratio over both together.
+void printPreparation(const std::vector<Row>& rows, RayCounts rays) {
+    std::printf(
+        "| scene | GPU preparation s | CPU ref preparation s | Embree build s | GPU/CPU, "
+        "preparation + trace, per CPU-s | the same, wall |\n|---|---|---|---|---|---|\n");
+    for (const Row& r : rows) {
+        if (!r.refused.empty()) continue;
+        std::printf("| %s | %s | %s | %s | %s | %s |\n", r.description.c_str(),
+                    seconds(r.prepare[kGpu]).c_str(), seconds(r.prepare[kCpuReference]).c_str(),
+                    seconds(r.prepare[kEmbree8]).c_str(),
+                    rate(over(mraysWithPreparation(r, kGpu, rays, true),
+                              mraysWithPreparation(r, kCpuReference, rays, true)))
+                        .c_str(),
+                    rate(over(mraysWithPreparation(r, kGpu, rays, false),
+                              mraysWithPreparation(r, kCpuReference, rays, false)))
+                        .c_str());
+    }
+}
+
+// Min, median and max of a ratio over the random set's rows of one kind.
+void printSpread(const char* what, std::vector<double> values) {
+    if (values.empty()) {
+        std::printf("| %s | - | - | - | 0 |\n", what);
+        return;
+    }
+    std::sort(values.begin(), values.end());
+    const size_t n = values.size();
+    const double median = n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
+    std::printf("| %s | %.2f | %.2f | %.2f | %zu |\n", what, values.front(), median, values.back(),
+                n);
+}
+
+void printRandomSummary(const std::vector<Row>& rows, RayCounts rays, const Options& o) {
+    std::printf(
+        "\nThe random set: %d scenes of `vkray difftest`'s generator, seeds %u to %llu "
+        "(`vkray difftest --seed %u --scenes %d` draws them), %dx%d, each traced with "
+        "primary rays only and shaded:\n\n",
+        o.randomScenes, o.firstSeed,
+        static_cast<unsigned long long>(o.firstSeed) + unsigned(o.randomScenes) - 1, o.firstSeed,
+        o.randomScenes, o.width, o.height);
+    std::printf("| ratio | min | median | max | scenes |\n|---|---|---|---|---|\n");
+    int refused = 0;
+    for (bool shaded : {false, true}) {
+        std::vector<double> figures[8];
+        for (const Row& r : rows) {
+            if (!r.random || r.shaded != shaded) continue;
+            if (!r.refused.empty()) {
+                refused += shaded ? 0 : 1;
+                continue;
+            }
+            const auto add = [&](int i, std::optional<double> v) {
+                if (v) figures[i].push_back(*v);
+            };
+            for (bool cpuTime : {true, false}) {
+                const int k = cpuTime ? 0 : 1;
+                add(k, over(mrays(r, kGpu, rays, cpuTime), mrays(r, kCpuReference, rays, cpuTime)));
+                add(2 + k, over(mrays(r, kGpuEveryGroup, rays, cpuTime),
+                                mrays(r, kCpuReference, rays, cpuTime)));
+                add(4 + k, over(mraysWithPreparation(r, kGpu, rays, cpuTime),
+                                mraysWithPreparation(r, kCpuReference, rays, cpuTime)));
+                add(6 + k, over(mrays(r, kGpu, rays, cpuTime), embreeBest(r, rays, cpuTime)));
+            }
+        }
+        const std::string kind = shaded ? "shaded" : "primary";
+        const char* what[8] = {"GPU/CPU ref, per CPU-second",
+                               "GPU/CPU ref, wall clock",
+                               "GPU every workgroup (no cover)/CPU ref, per CPU-second",
+                               "GPU every workgroup (no cover)/CPU ref, wall clock",
+                               "GPU/CPU ref, preparation + trace, per CPU-second",
+                               "GPU/CPU ref, preparation + trace, wall clock",
+                               "GPU/Embree (the faster of 1 and 8), per CPU-second",
+                               "GPU/Embree (the faster of 1 and 8), wall clock"};
+        for (int i = 0; i < 8; ++i) {
+            if (shaded && i >= 6) continue;  // Embree traces primary rays only
+            printSpread((kind + ": " + what[i]).c_str(), figures[i]);
+        }
+    }
+    if (refused > 0)
+        std::printf("\n%d scene(s) refused by the GPU (beyond the loop-turn bound): not counted\n",
+                    refused);
 }
 
 // The aims, from one table's figures.
@@ -246,7 +391,7 @@ void printAims(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
     std::optional<double> at10, at100k;
     for (const Row& r : rows) {
         const auto gpu = mrays(r, kGpu, rays, cpuTime);
-        if (!gpu) continue;
+        if (!gpu || r.random) continue;
         if (const auto overAll = specialisedOverAll(r, rays, cpuTime)) {
             minAll = std::min(minAll, *overAll);
             if (r.sphereOnly) {
@@ -254,10 +399,9 @@ void printAims(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
                 maxSphere = std::max(maxSphere, *overAll);
             }
         }
-        const auto e1 = mrays(r, kEmbree1, rays, cpuTime), e8 = mrays(r, kEmbree8, rays, cpuTime);
-        if (e1 && e8) {
-            bestEmbree = std::max(bestEmbree, *gpu / std::max(*e1, *e8));
-            worstEmbree = std::min(worstEmbree, *gpu / std::max(*e1, *e8));
+        if (const auto embree = embreeBest(r, rays, cpuTime)) {
+            bestEmbree = std::max(bestEmbree, *gpu / *embree);
+            worstEmbree = std::min(worstEmbree, *gpu / *embree);
         }
         if (r.name == "spheres10") at10 = gpu;
         if (r.name == "spheres100k") at100k = gpu;
@@ -327,6 +471,138 @@ Scene sceneToTrace(const BenchScene& bench, bool shaded) {
         scene.maxRecursionDepth = 0;
     }
     return scene;
+}
+
+// The GPU tracers of the run: the specialised variant as `vkray render`
+// ships it, the same with every workgroup traced (no primary cover: the
+// cull neither peer gets), and the all-features variant.
+struct Tracers {
+    gpu::GpuTracer specialised, everyGroup, allFeatures;
+};
+
+// One scene, primary or shaded, on every engine.
+Row measure(const BenchScene& bs, bool shaded, Tracers& tracers, const Options& o, RayCounts rays) {
+    const Scene scene = sceneToTrace(bs, shaded);
+    const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
+    const RenderSettings settings = imageOf(o.width, o.height);
+    const CameraBasis basis = makeCameraBasis(camera, o.width, o.height);
+    Row row;
+    row.name = bs.name;
+    row.description = bs.description + (bs.random ? (shaded ? ", shaded" : ", primary") : "");
+    row.objects = scene.objects.size();
+    row.sphereOnly = bs.sphereOnly;
+    row.random = bs.random;
+    row.shaded = shaded;
+    // The mode `vkray render` takes for this scene and camera (--precision auto).
+    const Precision precision = choosePrecision(scene, basis).precision;
+    for (gpu::GpuTracer* t : {&tracers.specialised, &tracers.everyGroup, &tracers.allFeatures})
+        t->setPrecision(precision);
+
+    // llvmpipe JIT-compiles a pipeline at its first dispatch: a small
+    // warm-up render takes that out of the timed ones.
+    const auto warmUp = [&](gpu::GpuTracer& tracer) {
+        tracer.render(scene, makeCameraBasis(camera, 64, 36), imageOf(64, 36));
+    };
+    // One timed render; `keep`: the specialised variant's full-size render,
+    // whose image, share of workgroups and device time the tables show.
+    const auto gpuRun = [&](gpu::GpuTracer& tracer, const RenderSettings& size, Engine engine,
+                            Timing& best, Frame* keep) {
+        gpu::GpuRenderStats stats;
+        Frame frame =
+            tracer.render(scene, makeCameraBasis(camera, size.width, size.height), size, &stats);
+        best.keepBest({stats.renderSeconds, stats.renderCpuSeconds});
+        if (engine != kGpu) return;
+        row.variant = stats.variant + (precision == Precision::Robust
+                                           ? std::string()
+                                           : std::string(", ") + precisionName(precision));
+        if (!keep) return;
+        Timing prepare = row.prepare[kGpu].value_or(Timing{});
+        prepare.keepBest({stats.setupSeconds, stats.setupCpuSeconds});
+        row.prepare[kGpu] = prepare;
+        char share[64];
+        std::snprintf(share, sizeof share, "%.1f %% (%zu of %zu)",
+                      100.0 * double(stats.groupsTraced) / double(stats.groups), stats.groupsTraced,
+                      stats.groups);
+        row.groupsTraced = share;
+        if (stats.deviceSeconds && (!row.gpuDevice || *stats.deviceSeconds < *row.gpuDevice)) {
+            row.gpuDevice = stats.deviceSeconds;
+            row.gpuDeviceWall = stats.renderSeconds;
+        }
+        if (keep->pixelCount() == 0) *keep = std::move(frame);
+    };
+    // The specialised variants and the CPU reference take turns, each run of
+    // one beside a run of the others, so that a slow spell of the machine (a
+    // shared VM's) falls on all and their ratios hold.
+    Frame gpuFrame, cpuFrame;
+    Timing gpuBest, everyGroupBest, cpuBest, cpuPrepare;
+    try {
+        warmUp(tracers.specialised);
+        warmUp(tracers.everyGroup);
+        for (int r = 0; r < o.repeat; ++r) {
+            gpuRun(tracers.specialised, settings, kGpu, gpuBest, &gpuFrame);
+            gpuRun(tracers.everyGroup, settings, kGpuEveryGroup, everyGroupBest, nullptr);
+            if (!o.cpu) continue;
+            reference::ReferenceStats stats;
+            reference::ReferenceOptions options{o.threads};
+            options.stats = &stats;
+            cpuFrame = reference::render(scene, basis, settings, options);
+            cpuBest.keepBest({stats.trace.wall, stats.trace.cpu});
+            cpuPrepare.keepBest({stats.prepare.wall, stats.prepare.cpu});
+        }
+    } catch (const gpu::BeyondTheLoopLimit& refused) {  // right or refused: refused, and said
+        row.refused = refused.what();
+        return row;
+    }
+    row.time[kGpu] = gpuBest;
+    row.time[kGpuEveryGroup] = everyGroupBest;
+    // The all-features variant is tens of times slower on lavapipe
+    // (BENCHMARKS.md): --all-size times it on a smaller image of the same
+    // view, beside the specialised variant on that image. Not on the random
+    // set, whose figures are the shipped variant's.
+    if (o.all && !bs.random) {
+        const RenderSettings small = imageOf(o.allWidth, o.allHeight);
+        const bool sameSize = small.width == o.width && small.height == o.height;
+        Timing allBest, smallBest;
+        warmUp(tracers.allFeatures);
+        for (int r = 0; r < o.repeat; ++r) {
+            gpuRun(tracers.allFeatures, small, kAllFeatures, allBest, nullptr);
+            if (!sameSize) gpuRun(tracers.specialised, small, kGpu, smallBest, nullptr);
+        }
+        row.time[kAllFeatures] = allBest;
+        row.smallGpu = sameSize ? row.time[kGpu] : smallBest;
+    }
+    char text[96];
+    if (o.cpu) {
+        row.time[kCpuReference] = cpuBest;
+        row.prepare[kCpuReference] = cpuPrepare;
+        std::snprintf(
+            text, sizeof text, "%.2f %%",
+            agreement(std::vector<int>(gpuFrame.id.begin(), gpuFrame.id.end()), cpuFrame.id));
+        row.idsGpu = text;
+    }
+#if VKRAY_HAVE_EMBREE
+    // Embree finds closest hits of primary rays: it has no column in a
+    // shaded run, whose feelers and secondary rays it does not trace.
+    if (o.embree && !shaded) {
+        std::optional<bench::EmbreeTracer> embree;
+        const Timing build = timed([&] { embree.emplace(scene, o.threads); });
+        row.prepare[kEmbree1] = row.prepare[kEmbree8] = build;
+        for (bool packets : {false, true}) {
+            Timing best;
+            std::vector<int> ids;
+            for (int r = 0; r < o.repeat; ++r)
+                best.keepBest(timed(
+                    [&] { ids = embree->trace(basis, o.width, o.height, o.threads, packets); }));
+            row.time[packets ? kEmbree8 : kEmbree1] = best;
+            if (packets && o.cpu) {
+                std::snprintf(text, sizeof text, "%.2f %%", agreement(ids, cpuFrame.id));
+                row.idsEmbree = text;
+            }
+        }
+    }
+#endif
+    (void)rays;
+    return row;
 }
 
 void runExperiments(const Options& o, gpu::Context& context) {
@@ -408,8 +684,8 @@ void runExperiments(const Options& o, gpu::Context& context) {
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
     // Freed frames (tens of MB) stay in the heap, their pages mapped, so
-    // that every later frame of the run, the CPU reference's and frameCpu's
-    // alike, is allocated the same way: glibc would otherwise map some
+    // that every later frame of the run is allocated the same way (the CPU
+    // reference's is timed as its preparation): glibc would otherwise map some
     // afresh (page faults) and reuse others, by what the process did before.
     // (32 MiB: glibc's largest mapping threshold; a 1920x1080 frame's
     // largest array is 25 MB.)
@@ -423,9 +699,6 @@ int main(int argc, char** argv) {
         gpu::Context context;
         const gpu::DeviceInfo& device = context.device();
         const std::string& shaders = o.shaderDirectory;
-        gpu::GpuTracer specialised(context, {.shaderDirectory = shaders, .tileSize = o.tile});
-        gpu::GpuTracer allFeatures(
-            context, {.shaderDirectory = shaders, .allFeatures = true, .tileSize = o.tile});
 
         char date[64];
         const std::time_t now = std::time(nullptr);
@@ -442,20 +715,28 @@ int main(int argc, char** argv) {
         std::printf("Embree: not built (CMake did not find Embree 3; apt install libembree-dev)\n");
 #endif
         std::printf(
-            "%dx%d primary rays, best of %d runs (the GPU's and the CPU reference's in turn); "
-            "CPU reference and Embree on %d threads; "
-            "GPU tiles %d px, shaders %s\n",
+            "%dx%d, one ray a pixel, best of %d runs (the GPU's and the CPU reference's in "
+            "turn); CPU reference and Embree on %d threads; GPU tiles %d px, shaders %s; each "
+            "scene in the precision `vkray render` chooses for it (--precision auto)\n",
             o.width, o.height, o.repeat, o.threads,
             o.tile > 0 ? o.tile : gpu::defaultTileSide(device), shaders.c_str());
         std::printf(
-            "%s; GPU: the dispatch loop with read-back; CPU reference: the whole render "
-            "(less allocating the frame); both shade each hit (ambient, emissive%s) and write "
-            "its colour and object id (`vkray render` without --aov); Embree: "
-            "closest hit only (rtcIntersect1, rtcIntersect8 on 4x2 pixels)\n",
-            o.shaded ? "shaded (--shaded): lights, shadow feelers and secondary rays as the "
-                       "scenes say"
-                     : "primary rays only: lights and secondary rays removed",
-            o.shaded ? ", lights, feelers, secondary rays" : "");
+            "%s; every engine's trace timed apart from its preparation (the preparation table "
+            "below): GPU, the dispatch loop with read-back, as shipped (the primary cover "
+            "leaves out workgroups whose rays meet nothing) and with every workgroup traced; "
+            "CPU reference, its rays; both shade each hit and write its colour and object id "
+            "(`vkray render` without --aov); Embree: closest hits of primary rays only "
+            "(rtcIntersect1, rtcIntersect8 on 4x2 pixels), so no Embree figure in a shaded "
+            "row\n",
+            o.shaded ? "the fixed scenes shaded (--shaded): lights, shadow feelers and "
+                       "secondary rays as the scenes say"
+                     : "the fixed scenes with primary rays only: lights and secondary rays "
+                       "removed");
+        if (o.randomScenes > 0)
+            std::printf(
+                "random set (--random %d): seeds %u on, a fresh seed unless --seed gave one; "
+                "each scene traced with primary rays only and shaded\n",
+                o.randomScenes, o.firstSeed);
         if (o.allWidth != o.width || o.allHeight != o.height)
             std::printf(
                 "all-features variant (--all-size): on a %dx%d image of the same view; GPU/all "
@@ -470,112 +751,18 @@ int main(int argc, char** argv) {
         }
         std::vector<Row> rows;
         const RayCounts rays{double(o.width) * o.height, double(o.allWidth) * o.allHeight};
+        Tracers tracers{
+            gpu::GpuTracer(context, {.shaderDirectory = shaders, .tileSize = o.tile}),
+            gpu::GpuTracer(context,
+                           {.shaderDirectory = shaders, .tileSize = o.tile, .primaryCover = false}),
+            gpu::GpuTracer(context,
+                           {.shaderDirectory = shaders, .allFeatures = true, .tileSize = o.tile})};
         for (const BenchScene& bs : o.scenes) {
-            const Scene scene = sceneToTrace(bs, o.shaded);
-            const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
-            const RenderSettings settings = imageOf(o.width, o.height);
-            const CameraBasis basis = makeCameraBasis(camera, o.width, o.height);
-            Row row;
-            row.name = bs.name;
-            row.description = bs.description;
-            row.objects = scene.objects.size();
-            row.sphereOnly = bs.sphereOnly;
-
-            // GPU: the dispatch loop (wall clock and CPU time), as GpuTracer
-            // measures it. llvmpipe JIT-compiles a pipeline at its first
-            // dispatch: a small warm-up render takes that out of the timed ones.
-            const auto warmUp = [&](gpu::GpuTracer& tracer) {
-                tracer.render(scene, makeCameraBasis(camera, 64, 36), imageOf(64, 36));
-            };
-            // One timed render; `keep`: the specialised variant's full-size
-            // render, whose image, share of workgroups and device time the
-            // tables show.
-            const auto gpuRun = [&](gpu::GpuTracer& tracer, bool all, const RenderSettings& size,
-                                    Timing& best, Frame* keep) {
-                gpu::GpuRenderStats stats;
-                Frame frame = tracer.render(scene, makeCameraBasis(camera, size.width, size.height),
-                                            size, &stats);
-                best.keepBest({stats.renderSeconds, stats.renderCpuSeconds});
-                row.variant = all ? row.variant : stats.variant;
-                if (!keep) return;
-                char share[64];
-                std::snprintf(share, sizeof share, "%.1f %% (%zu of %zu)",
-                              100.0 * double(stats.groupsTraced) / double(stats.groups),
-                              stats.groupsTraced, stats.groups);
-                row.groupsTraced = share;
-                if (stats.deviceSeconds &&
-                    (!row.gpuDevice || *stats.deviceSeconds < *row.gpuDevice)) {
-                    row.gpuDevice = stats.deviceSeconds;
-                    row.gpuDeviceWall = stats.renderSeconds;
-                }
-                if (keep->pixelCount() == 0) *keep = std::move(frame);
-            };
-            // The specialised variant and the CPU reference take turns, each
-            // run of one beside a run of the other, so that a slow spell of
-            // the machine (a shared VM's) falls on both and their ratio holds.
-            Frame gpuFrame, cpuFrame;
-            Timing gpuBest, cpuBest;
-            warmUp(specialised);
-            for (int r = 0; r < o.repeat; ++r) {
-                gpuRun(specialised, false, settings, gpuBest, &gpuFrame);
-                if (o.cpu)
-                    cpuBest.keepBest(timed([&] {
-                        cpuFrame = reference::render(scene, basis, settings, {o.threads});
-                    }));
+            for (bool shaded : bs.random ? std::vector<bool>{false, true} : std::vector{o.shaded}) {
+                rows.push_back(measure(bs, shaded, tracers, o, rays));
+                std::fprintf(stderr, "  %-12s %s done at %.0f s\n", bs.name.c_str(),
+                             shaded ? "shaded" : "primary", run.seconds());
             }
-            row.time[kGpu] = gpuBest;
-            // The all-features variant is tens of times slower on lavapipe
-            // (BENCHMARKS.md): --all-size times it on a smaller image of the
-            // same view, beside the specialised variant on that image.
-            if (o.all) {
-                const RenderSettings small = imageOf(o.allWidth, o.allHeight);
-                const bool sameSize = small.width == o.width && small.height == o.height;
-                Timing allBest, smallBest;
-                warmUp(allFeatures);
-                for (int r = 0; r < o.repeat; ++r) {
-                    gpuRun(allFeatures, true, small, allBest, nullptr);
-                    if (!sameSize) gpuRun(specialised, false, small, smallBest, nullptr);
-                }
-                row.time[kAllFeatures] = allBest;
-                row.smallGpu = sameSize ? row.time[kGpu] : smallBest;
-            }
-
-            const Timing bvh = timed([&] { buildObjectBvh(scene); });
-            char text[96];
-            std::snprintf(text, sizeof text, "object BVH %.3f s", bvh.wall);
-            row.builds = text;
-            if (o.cpu) {
-                cpuBest.cpu = std::max(cpuBest.cpu - frameCpu(o.width, o.height), 1e-9);
-                row.time[kCpuReference] = cpuBest;
-                std::snprintf(text, sizeof text, "%.2f %%",
-                              agreement(std::vector<int>(gpuFrame.id.begin(), gpuFrame.id.end()),
-                                        cpuFrame.id));
-                row.idsGpu = text;
-            }
-#if VKRAY_HAVE_EMBREE
-            if (o.embree) {
-                std::optional<bench::EmbreeTracer> embree;
-                const Timing build = timed([&] { embree.emplace(scene, o.threads); });
-                std::snprintf(text, sizeof text, ", Embree %.3f s (%s)", build.wall,
-                              embree->contents().c_str());
-                row.builds += text;
-                for (bool packets : {false, true}) {
-                    Timing best;
-                    std::vector<int> ids;
-                    for (int r = 0; r < o.repeat; ++r)
-                        best.keepBest(timed([&] {
-                            ids = embree->trace(basis, o.width, o.height, o.threads, packets);
-                        }));
-                    row.time[packets ? kEmbree8 : kEmbree1] = best;
-                    if (packets && o.cpu) {
-                        std::snprintf(text, sizeof text, "%.2f %%", agreement(ids, cpuFrame.id));
-                        row.idsEmbree = text;
-                    }
-                }
-            }
-#endif
-            std::fprintf(stderr, "  %-12s done at %.0f s\n", bs.name.c_str(), run.seconds());
-            rows.push_back(row);
         }
 
         std::printf("\nMrays/s, wall clock (best of %d):\n\n", o.repeat);
@@ -585,14 +772,19 @@ int main(int argc, char** argv) {
             "machine):\n\n");
         printTable(rows, rays, true);
         std::printf(
-            "\nSame rays, same hits: object ids equal to the CPU reference's, and build "
-            "times:\n\n");
+            "\nEach side's preparation before its trace, timed apart (best of %d; the tables "
+            "above are of the trace alone): GPU, the scene's device inputs, BVHs, world-space "
+            "triangles, primary cover and uploads (not the shader's compile); CPU reference, "
+            "its frame and object BVH; Embree, its build:\n\n",
+            o.repeat);
+        printPreparation(rows, rays);
+        std::printf("\nSame rays, same hits: object ids equal to the CPU reference's:\n\n");
         std::printf(
-            "| scene | GPU ids | Embree ids | GPU workgroups traced (the rest meet nothing) | "
-            "builds |\n|---|---|---|---|---|\n");
+            "| scene | GPU ids | Embree ids | GPU workgroups traced (the rest meet nothing) "
+            "|\n|---|---|---|---|\n");
         for (const Row& r : rows)
-            std::printf("| %s | %s | %s | %s | %s |\n", r.description.c_str(), r.idsGpu.c_str(),
-                        r.idsEmbree.c_str(), r.groupsTraced.c_str(), r.builds.c_str());
+            std::printf("| %s | %s | %s | %s |\n", r.description.c_str(), r.idsGpu.c_str(),
+                        r.idsEmbree.c_str(), r.groupsTraced.c_str());
         std::printf(
             "\nThe specialised variant's time on the device (timestamp queries around each "
             "dispatch; best of %d), against the wall clock of that render (the rest: submits, "
@@ -611,6 +803,7 @@ int main(int argc, char** argv) {
                         *r.gpuDevice, *r.gpuDeviceWall, 100 * *r.gpuDevice / *r.gpuDeviceWall,
                         *r.gpuDevice > 0 ? rays.full / *r.gpuDevice * 1e-6 : 0.0);
         }
+        if (o.randomScenes > 0) printRandomSummary(rows, rays, o);
         std::printf("\nAims (GPU/Embree against the faster Embree column):\n");
         printAims(rows, rays, false);
         printAims(rows, rays, true);

@@ -8,6 +8,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
   glslang-dev glslang-tools spirv-tools
   libglm-dev libstb-dev
+  zlib1g-dev  # deflate for the PNGs stb_image_write encodes (a quarter of stb's own time)
   libassimp-dev  # mesh FILE in OBJ, PLY, glTF 2.0, STL, OFF, ... (host/scene/mesh_import.*)
   assimp-testmodels  # real model files by others, which the tests render (tests/scene/mesh_import_test.cpp)
   libopenexr-dev  # OpenEXR 3: -o X.exr, --aov X.exr and compare reading .exr

@@ -8,6 +8,7 @@
 #include "scene/scene_geometry.h"
 #include "scene/sdl_reader.h"
 #include "util/error.h"
+#include "util/stopwatch.h"
 
 #include <unistd.h>
 #include <cstdio>
@@ -143,12 +144,14 @@ std::vector<std::string> sceneInputs(const Options& o) {
 gpu::GpuTracer& GpuSession::tracerFor(const Options& o, std::ostream& out) {
     if (!tracer) {
         // Ranks of an MPI job on one node spread over its equally good devices.
+        const Stopwatch making;
         context = std::make_unique<gpu::Context>(
             gpu::ContextOptions{o.device, o.validation, dist::World::current().localRank()});
         const gpu::DeviceInfo& device = context->device();
         out << "device: " << device.name << " (" << device.type << ", " << device.driverName << " "
             << device.driverInfo << ")\n";
         tracer = std::make_unique<gpu::GpuTracer>(*context, gpuRenderOptions(o));
+        deviceSetupSeconds = making.seconds();
     }
     tracer->setPrecision(o.precision);  // --precision auto may choose anew on a reload
     return *tracer;

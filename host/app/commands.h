@@ -66,6 +66,7 @@ public:
 struct GpuSession {
     std::unique_ptr<gpu::Context> context;
     std::unique_ptr<gpu::GpuTracer> tracer;
+    double deviceSetupSeconds = 0;  // making the context (instance, device, queue)
 
     // Prints the device chosen when it first makes them.
     gpu::GpuTracer& tracerFor(const Options& options, std::ostream& out);

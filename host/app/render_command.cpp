@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <ostream>
 #include <thread>
 
@@ -59,9 +60,49 @@ RenderProgress progressTo(ProgressDisplay& display) {
     };
 }
 
+// Where a one-shot render's wall clock went, stage by stage: printed last,
+// once the image is encoded.
+struct StageTimes {
+    double scene = 0, encode = 0;
+    std::optional<double> device;                  // the context was made for this render
+    std::optional<gpu::GpuRenderStats> gpu;        // the GPU rendered (in this process)
+    std::optional<reference::ReferenceStats> cpu;  // --cpu
+};
+
+std::string stageLine(const StageTimes& t, double total) {
+    const auto s = [](double seconds) { return fixedDigits(seconds, 3) + " s"; };
+    std::string line = "time: scene " + s(t.scene);
+    double counted = t.scene + t.encode;
+    if (t.device) {
+        line += ", device set-up " + s(*t.device);
+        counted += *t.device;
+    }
+    if (t.gpu) {
+        const gpu::GpuRenderStats& g = *t.gpu;
+        line +=
+            ", shader " + s(g.shader.seconds) + (g.shader.cacheHit ? " (cached)" : " (compiled)");
+        if (g.pipelineSeconds > 0) line += ", pipeline " + s(g.pipelineSeconds);
+        line += ", preparation and upload " + s(g.setupSeconds) + ", trace " +
+                s(g.renderSeconds - g.readBackSeconds) + " (its first tile " +
+                s(g.firstTileSeconds) + "), read-back " + s(g.readBackSeconds);
+        counted += g.shader.seconds + g.pipelineSeconds + g.setupSeconds + g.renderSeconds;
+    }
+    if (t.cpu) {
+        line += ", preparation (frame, BVH) " + s(t.cpu->prepare.wall) + ", trace " +
+                s(t.cpu->trace.wall);
+        counted += t.cpu->prepare.wall + t.cpu->trace.wall;
+    }
+    // The rest: the camera, the precision's choice, the reports, --check.
+    return line + ", encode " + s(t.encode) + ", other " + s(std::max(total - counted, 0.0)) +
+           "; total " + s(total);
+}
+
 Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
-                const Options& o, GpuSession& session, std::ostream& out, std::ostream& err) {
+                const Options& o, GpuSession& session, std::ostream& out, std::ostream& err,
+                StageTimes& times) {
+    const bool fresh = session.tracer == nullptr;
     gpu::GpuTracer& tracer = session.tracerFor(o, out);
+    if (fresh) times.device = session.deviceSetupSeconds;
     gpu::GpuRenderStats stats;
     ProgressDisplay display(err, ProgressDisplay::styleForStderr(o.quiet), "gpu render");
     const dist::World& world = dist::World::current();
@@ -85,6 +126,7 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
                 << " traced again with less work per dispatch: the driver's loop limit cut a "
                    "dispatch short\n";
         session.requireNoValidationMessages(o);
+        times.gpu = stats;
         return frame;
     }
     const Stopwatch stopwatch;
@@ -92,7 +134,8 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
     Frame frame = dist::renderAcrossRanks(world, tracer, scene, camera, settings, &stats,
                                           progressTo(display), &shares);
     if (world.rank() != 0) return frame;  // its tiles are with rank 0, which reports
-    const double seconds = stopwatch.seconds() - stats.shader.seconds - stats.setupSeconds;
+    const double seconds =
+        stopwatch.seconds() - stats.shader.seconds - stats.pipelineSeconds - stats.setupSeconds;
     display.finish();
     reportShader(stats, o, out);
     std::size_t tiles = 0;
@@ -112,7 +155,8 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
 }
 
 Frame renderCpu(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
-                const Options& o, std::ostream& out, std::ostream& err) {
+                const Options& o, std::ostream& out, std::ostream& err,
+                reference::ReferenceStats& stats) {
     const Stopwatch stopwatch;
     const int threads =
         o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
@@ -120,16 +164,22 @@ Frame renderCpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
     reference::ReferenceOptions options;
     options.threads = threads;
     options.progress = progressTo(display);
+    options.stats = &stats;
     Frame frame = reference::render(scene, camera, settings, options);
     display.finish();
     const double seconds = stopwatch.seconds();
-    out << "cpu reference render: " << fixedDigits(seconds, 3) << " s, " << threads << " threads, "
+    out << "cpu reference render: " << fixedDigits(seconds, 3) << " s (preparation "
+        << fixedDigits(stats.prepare.wall, 3) << " s, trace " << fixedDigits(stats.trace.wall, 3)
+        << " s), " << threads << " threads, "
         << fixedDigits(mrays(primaryRays(settings), seconds), 2) << " Mrays/s\n";
     return frame;
 }
 
 int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::ostream& err) {
+    const Stopwatch total;
+    StageTimes times;
     const Scene scene = loadSceneFor(o, err);
+    times.scene = total.seconds();
     const std::string output =
         o.outputPath.empty() ? fs::path(o.scenePath).stem().string() + ".png" : o.outputPath;
     requireWritableFolder(output, "output");
@@ -153,15 +203,18 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
     if (!o.cpu || o.check) force = precisionInForce(scene, camera, o, out, err);
     run.precision = force.precision;
 
-    Frame frame = o.cpu ? renderCpu(scene, camera, settings, run, out, err)
-                        : renderGpu(scene, camera, settings, run, session, out, err);
+    reference::ReferenceStats cpuStats;
+    Frame frame = o.cpu ? renderCpu(scene, camera, settings, run, out, err, cpuStats)
+                        : renderGpu(scene, camera, settings, run, session, out, err, times);
+    if (o.cpu) times.cpu = cpuStats;
     if (dist::World::current().rank() != 0) return 0;  // rank 0 has the frame
     bool passed = true;
     // Every output is written in full beside its destination, then all are
     // renamed into place together: a failed or interrupted run changes none.
     StagedFiles files;
     if (o.check) {
-        Frame reference = renderCpu(scene, camera, settings, o, out, err);
+        reference::ReferenceStats referenceStats;
+        Frame reference = renderCpu(scene, camera, settings, o, out, err, referenceStats);
         const CompareOptions tolerance{o.failThreshold.value_or(kCheckFailThreshold),
                                        o.failPercent.value_or(kCheckFailPercent)};
         const Image idsGpu = idImage(frame), idsCpu = idImage(reference);
@@ -174,20 +227,23 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
     }
 
     if (stopRequested()) throw Interrupted();
+    const Stopwatch encoding;
     // `-o X.exr --aov X.exr`: the AOV file holds the image too (R, G, B).
     const bool imageInAovs =
         !o.aovPrefix.empty() && isExrPath(o.aovPrefix) &&
         fs::path(output).lexically_normal() == fs::path(o.aovPrefix).lexically_normal();
-    if (!imageInAovs) stageImage(files, output, colorImage(frame));
+    if (!imageInAovs) stageColor(files, output, frame);
     if (!o.aovPrefix.empty())
         stageAovs(
             files, o.aovPrefix, frame,
             isExrPath(o.aovPrefix) ? hitPoints(frame, camera, settings) : std::vector<glm::vec3>{});
     if (stopRequested()) throw Interrupted();
     files.commit();
+    times.encode = encoding.seconds();
     if (!o.diffPath.empty()) out << "wrote " << o.diffPath << "\n";
     if (!imageInAovs) out << "wrote " << output << "\n";
     if (!o.aovPrefix.empty()) out << "wrote " << aovFilesText(o.aovPrefix) << "\n";
+    if (times.gpu || times.cpu) out << stageLine(times, total.seconds()) << "\n";
     if (o.check && !force.comparable) return 3;
     return passed ? 0 : 2;
 }

@@ -110,6 +110,7 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     }
     stats.shader = loadOrCompile(source);
     stats.variant = describe(features);
+    stats.pipelineSeconds = 0;
     for (auto kept = pipelines_.begin(); kept != pipelines_.end(); ++kept) {
         if ((*kept)->key != stats.shader.key) continue;
         std::rotate(kept, kept + 1, pipelines_.end());  // the last used goes last
@@ -124,9 +125,11 @@ const Pipeline& GpuTracer::pipelineFor(const ShaderFeatures& features, GpuRender
     std::vector<ComputeBinding> bindings;
     for (const ShaderBinding& b : bindingsFor(features))
         bindings.push_back({b.binding, descriptorTypeOf(b.kind)});
+    const Stopwatch creating;
     auto p = std::make_unique<Pipeline>(
         Pipeline{stats.shader.key, workgroupX, workgroupY,
                  ComputePipeline(context_.impl(), stats.shader.spirv, std::move(bindings), 0)});
+    stats.pipelineSeconds = creating.seconds();
     if (pipelines_.size() == kPipelinesKept) pipelines_.erase(pipelines_.begin());
     pipelines_.push_back(std::move(p));
     return *pipelines_.back();
@@ -149,6 +152,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
                              const RenderSettings& settings, GpuRenderStats* stats,
                              const RenderProgress& progress, TileSchedule* schedule,
                              std::vector<StressSample>* stressSamples) try {
+    const StageClock setup;
     const GpuInputs inputs = prepareGpuInputs(options_.precision, original, originalCamera);
     const Scene& scene = inputs.scene;
     const CameraBasis& camera = inputs.camera;
@@ -157,7 +161,6 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     GpuRenderStats local;
     GpuRenderStats& st = stats ? *stats : local;
 
-    const Stopwatch setup;
     if (settings.spp < 1 || settings.spp > kMaxSpp)
         throw Error("render: samples per pixel must be from 1 to " + std::to_string(kMaxSpp));
     const int samples = sampleEnd(settings) - settings.firstSample;  // traced per pixel
@@ -170,7 +173,9 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
         throw Error("the stress output records the feelers of " +
                     std::to_string(STRESS_MAX_LIGHTS) + " lights; this scene has " +
                     std::to_string(scene.lights.size()));
+    const StageClock compiling;
     const Pipeline& pipeline = pipelineFor(features, st);
+    const Elapsed compiled = compiling.elapsed();
     // Tiles hold whole blocks, so a block never straddles two dispatches;
     // they shrink with the samples per pixel, so that no dispatch runs long,
     // and where the device's buffer or workgroup limits need it.
@@ -205,7 +210,6 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
                        !features.stressOutput && !features.debugPixel;
     TracePass pass(context_.impl(), pipeline, features, features.doubles, scene, camera, settings,
                    tile, {cover, bool(tileListener_)}, overlap ? 2 : 1);
-    st.setupSeconds = setup.seconds() - st.shader.seconds;
 
     // Tracing every tile, the frame starts as the background, so that a
     // tile's pixels whose rays meet nothing (most of many images) are not
@@ -218,6 +222,9 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
                               settings.firstSample == 0 && features.aovs ? miss.normal.w : 0)
                       : Frame(settings.width, settings.height);
     if (stressSamples) stressSamples->assign(frame.pixelCount(), StressSample{});
+    const Elapsed prepared = setup.elapsed();
+    st.setupSeconds = prepared.wall - compiled.wall;
+    st.setupCpuSeconds = prepared.cpu - compiled.cpu;
     const Stopwatch rendering;
     const double renderCpuStart = processCpuSeconds();
     st.tiles = 0;
@@ -230,7 +237,10 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
     if (progress && !progress(0, totalRays)) throw Interrupted();
     uint turnBudget = options_.turnBudget > 0 ? uint(options_.turnBudget) : kTurnBudget;
     // The finished tile of `slot` into the frame, and to the listener.
+    st.readBackSeconds = 0;
+    st.firstTileSeconds = 0;
     const auto readBack = [&](int slot, const TileRect& piece) {
+        const Stopwatch copying;
         const int tx = piece.x, ty = piece.y, w = piece.width, h = piece.height;
         if (tileListener_) tileListener_(TracedTile{piece, pass.pixelBuffer(slot)});
         const GpuPixel* pixels = pass.pixels(slot);
@@ -262,6 +272,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
         st.rays +=
             size_t((w + block - 1) / block) * size_t((h + block - 1) / block) * size_t(samples);
         ++st.tiles;
+        st.readBackSeconds += copying.seconds();
         if (progress && !progress(st.rays, totalRays)) throw Interrupted();
     };
     if (overlap) {
@@ -292,6 +303,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
             const auto [piece, slot] = inFlight.front();
             inFlight.pop_front();
             pass.finish(slot, turnBudget, st);
+            if (st.firstTileSeconds == 0) st.firstTileSeconds = rendering.seconds();
             readBack(slot, pieces[piece]);
             freeSlots.push_back(slot);
             fill();
@@ -305,6 +317,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
                 const TileRect at{given->x + piece.x, given->y + piece.y, piece.width,
                                   piece.height};
                 pass.traceTile(at.x, at.y, at.width, at.height, block, turnBudget, st);
+                if (st.firstTileSeconds == 0) st.firstTileSeconds = rendering.seconds();
                 readBack(0, at);
             }
             schedule->finished(*given, frame);

@@ -65,8 +65,17 @@ struct GpuRenderOptions {
 struct GpuRenderStats {
     double renderSeconds = 0;  // the dispatch loop, tiles read back included
     double renderCpuSeconds =
-        0;                    // CPU time of the process (all threads: lavapipe's too) in that loop
-    double setupSeconds = 0;  // buffers, pipeline (shader compile excluded)
+        0;  // CPU time of the process (all threads: lavapipe's too) in that loop
+    // The scene's preparation before the first dispatch: its device inputs,
+    // object BVH, world-space triangles, primary cover, buffers, uploads and
+    // the frame (the shader's compile and the pipeline's creation excluded).
+    double setupSeconds = 0, setupCpuSeconds = 0;
+    double pipelineSeconds = 0;  // the driver creating the pipeline (0 when it was kept)
+    double readBackSeconds = 0;  // within the dispatch loop: tiles copied into the frame
+    // Within the dispatch loop: until the first dispatched tile was traced.
+    // lavapipe compiles a pipeline's machine code at its first dispatch, so
+    // on a fresh pipeline this holds that compile.
+    double firstTileSeconds = 0;
     // The dispatches' own time on the device, from timestamp queries written
     // before and after each: what the wall clock holds less the host's part
     // (submits, waits, read-back). Empty where the queue has no timestamps.

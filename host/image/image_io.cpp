@@ -1,5 +1,6 @@
 #include "image/image_io.h"
 
+#include "image/aov_images.h"
 #include "image/exr_io.h"
 #include "image/pfm.h"
 #include "image/stb_codecs.h"
@@ -120,6 +121,15 @@ Image readImage(const std::string& path) {
 }
 
 // ---- staged images ---------------------------------------------------------
+
+void stageColor(StagedFiles& files, const std::string& path, const Frame& frame) {
+    if (formatOf(path, false) != Format::Png || frame.pixelCount() == 0)
+        return stageImage(files, path, colorImage(frame));
+    std::vector<unsigned char> bytes(frame.pixelCount() * 3);
+    for (size_t i = 0; i < frame.pixelCount(); ++i)
+        for (int c = 0; c < 3; ++c) bytes[3 * i + size_t(c)] = pngByte(frame.color[i][c]);
+    files.stage(path, encodePng(path, frame.width, frame.height, 3, bytes));
+}
 
 void stageImage(StagedFiles& files, const std::string& path, const Image& image) {
     const Format format = formatOf(path, false);

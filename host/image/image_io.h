@@ -6,6 +6,7 @@
 // place, so a failed run never leaves a partial file.
 #pragma once
 
+#include "image/frame.h"
 #include "image/image.h"
 #include "util/files.h"
 
@@ -47,5 +48,9 @@ Image decodeImage(const std::string& bytes, const std::string& path);
 // writeImage as part of a set of files written together (util/files.h
 // StagedFiles).
 void stageImage(StagedFiles& files, const std::string& path, const Image& image);
+// A frame's colours, as stageImage(colorImage(frame)) writes them; a PNG is
+// converted to its bytes straight from the frame, with no float copy of it
+// (a quarter of the memory to fault in).
+void stageColor(StagedFiles& files, const std::string& path, const Frame& frame);
 
 }  // namespace vkray

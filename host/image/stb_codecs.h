@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "image/image.h"
 
@@ -15,6 +16,9 @@ unsigned char pngByte(float value);
 // An image of 1 or 3 channels as PNG file bytes (grey or RGB8). Throws Error
 // naming `path` when encoding fails.
 std::string encodePng(const std::string& path, const Image& image);
+// The same from bytes already converted (pngByte), `channels` (1 or 3) a pixel.
+std::string encodePng(const std::string& path, int width, int height, int channels,
+                      const std::vector<unsigned char>& bytes);
 
 // PNG or BMP file bytes (any channel count) as 3 channels in [0,1]. Throws
 // Error naming `path`.

@@ -120,6 +120,7 @@ Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings
                     std::to_string(settings.spp) + ")");
     sampleEnd(settings);  // the samples asked for are among the pixel's
     const int block = std::max(settings.block, 1);
+    const StageClock preparing;
     Frame frame(settings.width, settings.height);
 
     // Block rows are handed out to the threads in turn. Each pixel's value
@@ -129,6 +130,8 @@ Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings
 
     const SceneIntersector intersector(scene, options.bruteForce);  // one BVH for all rays
     const WhittedShader shader(scene, intersector);
+    const Elapsed prepared = preparing.elapsed();
+    const StageClock tracing;
     const std::size_t raysPerRow = std::size_t((settings.width + block - 1) / block);
     const std::size_t totalRays = raysPerRow * std::size_t(blockRows);
     if (options.progress && !options.progress(0, totalRays)) throw Interrupted();
@@ -143,6 +146,7 @@ Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings
             if (options.progress && !options.progress(done, totalRays)) throw Interrupted();
         },
         options.threads);
+    if (options.stats) *options.stats = {prepared, tracing.elapsed()};
     return frame;
 }
 

@@ -8,13 +8,21 @@
 #include "render/camera.h"
 #include "render/render_progress.h"
 #include "scene/scene.h"
+#include "util/stopwatch.h"
 
 namespace vkray::reference {
 
+// Where a render's time went: the frame's allocation and the object BVH
+// (preparation), then the rays (trace).
+struct ReferenceStats {
+    Elapsed prepare, trace;
+};
+
 struct ReferenceOptions {
-    int threads = 0;          // 0: std::thread::hardware_concurrency()
-    bool bruteForce = false;  // test every object for every ray (the BVH's oracle)
-    RenderProgress progress;  // after each row of blocks; false stops (Interrupted)
+    int threads = 0;                  // 0: std::thread::hardware_concurrency()
+    bool bruteForce = false;          // test every object for every ray (the BVH's oracle)
+    RenderProgress progress;          // after each row of blocks; false stops (Interrupted)
+    ReferenceStats* stats = nullptr;  // filled when given
 };
 
 // Renders every pixel (or block: settings.block) with Whitted shading

@@ -26,4 +26,24 @@ inline double processCpuSeconds() {
     return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
+// Wall-clock and process CPU seconds of one stretch of work: a stage's
+// cost, told apart from the stages beside it.
+struct Elapsed {
+    double wall = 0, cpu = 0;
+    Elapsed& operator+=(const Elapsed& other) {
+        wall += other.wall;
+        cpu += other.cpu;
+        return *this;
+    }
+};
+
+class StageClock {
+public:
+    Elapsed elapsed() const { return {wall_.seconds(), processCpuSeconds() - cpu_}; }
+
+private:
+    Stopwatch wall_;
+    double cpu_ = processCpuSeconds();
+};
+
 }  // namespace vkray

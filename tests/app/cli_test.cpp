@@ -28,6 +28,26 @@ TEST_F(Cli, RenderWritesImageAndAovsAndReportsTime) {
     EXPECT_NE(run.output.find("wrote " + path("out.png")), std::string::npos) << run.output;
     for (const char* file : {"out.png", "aov.depth.pfm", "aov.normal.pfm", "aov.id.pfm"})
         EXPECT_TRUE(fs::exists(dir / file)) << file;
+    // Where the wall clock went, last: every stage a one-shot GPU render has.
+    const size_t line = run.output.find("\ntime: scene ");
+    ASSERT_NE(line, std::string::npos) << run.output;
+    const std::string stages = run.output.substr(line);
+    for (const char* stage : {"device set-up ", "shader ", "preparation and upload ", "trace ",
+                              "its first tile ", "read-back ", "encode ", "other ", "; total "})
+        EXPECT_NE(stages.find(stage), std::string::npos) << stage << "\n" << stages;
+}
+
+TEST_F(Cli, CpuRenderTellsPreparationFromTrace) {
+    RunResult run = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png") +
+                          " --size 64x48 --cpu");
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("cpu reference render: "), std::string::npos) << run.output;
+    const size_t line = run.output.find("\ntime: scene ");
+    ASSERT_NE(line, std::string::npos) << run.output;
+    const std::string stages = run.output.substr(line);
+    for (const char* stage : {"preparation (frame, BVH) ", "trace ", "encode ", "; total "})
+        EXPECT_NE(stages.find(stage), std::string::npos) << stage << "\n" << stages;
+    EXPECT_EQ(stages.find("device set-up"), std::string::npos) << stages;
 }
 
 // The EXR's layers hold what the PFM set and a float image of the same

@@ -75,6 +75,24 @@ TEST(BenchOptions, SceneFilesAloneReplaceTheDefaultList) {
               (std::vector<std::string>{"mesh"}));
 }
 
+TEST(BenchOptions, RandomScenesAloneReplaceTheDefaultListAndTakeASeed) {
+    const BenchOptions random = parse({"--random", "40", "--seed", "4294967295"});
+    EXPECT_EQ(random.randomScenes, 40);
+    EXPECT_TRUE(random.sceneNames.empty());
+    ASSERT_TRUE(random.seed.has_value());
+    EXPECT_EQ(*random.seed, 4294967295u);                     // difftest's seeds are 32 bits
+    EXPECT_FALSE(parse({"--random", "3"}).seed.has_value());  // the harness draws a fresh one
+    EXPECT_EQ(parse({"--random", "3", "--scenes", "mesh"}).sceneNames,
+              (std::vector<std::string>{"mesh"}));
+    EXPECT_EQ(parse({}).randomScenes, 0);
+    EXPECT_NE(errorOf({"--random", "0"}).find("--random"), std::string::npos);
+    EXPECT_NE(errorOf({"--random", "x"}).find("--random"), std::string::npos);
+    EXPECT_NE(errorOf({"--random", "2", "--seed", "-1"}).find("--seed"), std::string::npos);
+    EXPECT_NE(errorOf({"--random", "2", "--seed", "4294967296"}).find("--seed"), std::string::npos);
+    const std::string alone = errorOf({"--seed", "7"});
+    EXPECT_NE(alone.find("--random"), std::string::npos) << alone;
+}
+
 TEST(BenchOptions, BadValuesAreErrorsNamingTheFlag) {
     const std::string notANumber = errorOf({"--repeat", "abc"});
     EXPECT_NE(notANumber.find("--repeat"), std::string::npos) << notANumber;

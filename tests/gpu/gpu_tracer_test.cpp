@@ -247,6 +247,13 @@ TEST(GpuTracer, DeviceTimeOfTheDispatchesLiesWithinTheRender) {
     EXPECT_EQ(stats.dispatches, 12u);
     EXPECT_GT(*stats.deviceSeconds, 0.0);
     EXPECT_LE(*stats.deviceSeconds, stats.renderSeconds);
+    // The stages of the loop lie within it, and preparation was timed.
+    EXPECT_GT(stats.firstTileSeconds, 0.0);
+    EXPECT_LE(stats.firstTileSeconds, stats.renderSeconds);
+    EXPECT_GE(stats.readBackSeconds, 0.0);
+    EXPECT_LE(stats.readBackSeconds, stats.renderSeconds);
+    EXPECT_GT(stats.setupSeconds, 0.0);
+    EXPECT_GE(stats.setupCpuSeconds, 0.0);
 }
 
 // A render without AOVs (`vkray render` without --aov) writes the colour

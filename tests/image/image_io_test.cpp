@@ -89,6 +89,26 @@ TEST_F(ImageIo, PngRoundTripRoundsAndClamps) {
     EXPECT_NEAR(back.pixels[0], 0.5f, 1 / 255.f);
 }
 
+// A frame's colours staged straight to PNG bytes are the file that the
+// float copy gives, and every other format still goes through that copy.
+TEST_F(ImageIo, ColoursStagedFromTheFrameAreTheImagesFile) {
+    Frame frame(5, 3);
+    for (size_t i = 0; i < frame.pixelCount(); ++i)
+        frame.color[i] = {0.1f * float(i), -0.5f + 0.2f * float(i), i == 7 ? kInf : 0.3f};
+    for (const char* name : {"a.png", "a.pfm", "a.exr"}) {
+        writeImage(path(std::string("copy-") + name), colorImage(frame));
+        StagedFiles files;
+        stageColor(files, path(name), frame);
+        files.commit();
+        std::ifstream a(path(std::string("copy-") + name), std::ios::binary),
+            b(path(name), std::ios::binary);
+        const std::string copied{std::istreambuf_iterator<char>(a), {}},
+            direct{std::istreambuf_iterator<char>(b), {}};
+        EXPECT_FALSE(direct.empty()) << name;
+        EXPECT_EQ(direct, copied) << name;
+    }
+}
+
 TEST_F(ImageIo, PngExtensionIsCaseInsensitiveAndTopRowStaysOnTop) {
     Image image{2, 2, 3, std::vector<float>(12, 0)};
     image.pixels[0] = 1;  // red marker at the top-left pixel

@@ -4,6 +4,7 @@
 
 #include "reference/reference_test_util.h"
 #include "util/error.h"
+#include "util/stopwatch.h"
 
 #include <gtest/gtest.h>
 #include <glm/matrix.hpp>
@@ -78,6 +79,23 @@ TEST(ReferenceTracer, CentrePixelOfATinySphere) {
     EXPECT_NEAR(frame.depth[centre], 4, 1e-6);
     EXPECT_EQ(frame.normal[centre], glm::vec3(0, 0, 1));
     expectColor(frame.color[centre], {1.81, 1.81, 1.81});
+}
+
+TEST(ReferenceTracer, StatsTellPreparationFromTrace) {
+    // Both stages are timed on every render that asks; the rays take CPU
+    // time, and neither stage takes longer than the render around them.
+    const Scene scene = litSphere();
+    ReferenceStats stats;
+    ReferenceOptions options;
+    options.threads = 1;
+    options.stats = &stats;
+    const Stopwatch around;
+    render(scene, camera({0, 0, 5}, 60, 64, 48), {64, 48, 1}, options);
+    const double wall = around.seconds();
+    EXPECT_GE(stats.prepare.wall, 0);
+    EXPECT_GT(stats.trace.wall, 0);
+    EXPECT_GT(stats.trace.cpu, 0);
+    EXPECT_LE(stats.prepare.wall + stats.trace.wall, wall);
 }
 
 TEST(ReferenceTracer, PixelsThatMissShowTheBackground) {
