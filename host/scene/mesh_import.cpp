@@ -3,14 +3,19 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <algorithm>
+#include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
+#include <assimp/LogStream.hpp>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <glm/geometric.hpp>
 #include <system_error>
+#include <type_traits>
 
 #include "scene/mesh_file.h"
+#include "util/child_process.h"
 #include "util/error.h"
 
 namespace vkray {
@@ -123,7 +128,6 @@ TriangleMesh meshFromScene(const aiScene& scene, const std::string& path) {
         }
     }
     mesh.closed = isClosedSurface(mesh.positions, mesh.triangles);
-    finishMesh(mesh);
     return mesh;
 }
 
@@ -140,6 +144,79 @@ TriangleMesh meshFromImport(const aiScene* scene, const Assimp::Importer& import
     return meshFromScene(*scene, path);
 }
 
+// Assimp's warnings about the file (faces it dropped, data it ignored), as
+// its logger writes them, collected for the caller to show.
+class WarningsKept : public Assimp::LogStream {
+public:
+    explicit WarningsKept(std::vector<std::string>& kept) : kept_(kept) {}
+    void write(const char* message) override {
+        std::string text = message;
+        while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
+            text.pop_back();
+        // "Warn,  T0: glTF2: ..." -> "glTF2: ..."
+        if (const size_t colon = text.find(": "); text.rfind("Warn", 0) == 0 && colon != text.npos)
+            text.erase(0, colon + 2);
+        if (kept_.size() < kMaxWarnings) kept_.push_back(text);
+    }
+    static constexpr size_t kMaxWarnings = 20;
+
+private:
+    std::vector<std::string>& kept_;
+};
+
+// The mesh (before finishMesh) and the warnings, as bytes from the child
+// that imported them to the process that shows them.
+template <typename T>
+void append(std::string& bytes, const std::vector<T>& values) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const std::uint64_t count = values.size();
+    bytes.append(reinterpret_cast<const char*>(&count), sizeof count);
+    bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+template <typename T>
+std::vector<T> take(const std::string& bytes, size_t& at) {
+    std::uint64_t count = 0;
+    if (at + sizeof count > bytes.size()) throw Error("internal: a short mesh import answer");
+    std::memcpy(&count, bytes.data() + at, sizeof count);
+    at += sizeof count;
+    if (count > (bytes.size() - at) / sizeof(T))
+        throw Error("internal: a short mesh import answer");
+    std::vector<T> values(count);
+    std::memcpy(values.data(), bytes.data() + at, count * sizeof(T));
+    at += count * sizeof(T);
+    return values;
+}
+
+std::string meshBytes(const TriangleMesh& mesh, const std::vector<std::string>& warnings) {
+    std::string bytes;
+    append(bytes, std::vector<char>(mesh.name.begin(), mesh.name.end()));
+    append(bytes, mesh.positions);
+    append(bytes, mesh.normals);
+    append(bytes, mesh.triangles);
+    append(bytes, std::vector<char>{char(mesh.closed)});
+    for (const std::string& warning : warnings)
+        append(bytes, std::vector<char>(warning.begin(), warning.end()));
+    return bytes;
+}
+
+TriangleMesh meshOfBytes(const std::string& bytes, std::vector<std::string>& warnings) {
+    size_t at = 0;
+    TriangleMesh mesh;
+    const std::vector<char> name = take<char>(bytes, at);
+    mesh.name.assign(name.begin(), name.end());
+    mesh.positions = take<glm::dvec3>(bytes, at);
+    mesh.normals = take<glm::dvec3>(bytes, at);
+    mesh.triangles = take<TriangleMesh::Triangle>(bytes, at);
+    const std::vector<char> closed = take<char>(bytes, at);
+    mesh.closed = !closed.empty() && closed[0] != 0;
+    while (at < bytes.size()) {
+        const std::vector<char> warning = take<char>(bytes, at);
+        warnings.emplace_back(warning.begin(), warning.end());
+    }
+    return mesh;
+}
+
 }  // namespace
 
 bool is3vnPath(const std::string& path) {
@@ -149,11 +226,11 @@ bool is3vnPath(const std::string& path) {
     return extension == ".3vn";
 }
 
-TriangleMesh loadMeshFile(const std::string& path) {
-    return is3vnPath(path) ? meshFrom3vn(load3vn(path)) : importMeshFile(path);
+TriangleMesh loadMeshFile(const std::string& path, std::vector<std::string>* warnings) {
+    return is3vnPath(path) ? meshFrom3vn(load3vn(path)) : importMeshFile(path, warnings);
 }
 
-TriangleMesh importMeshFile(const std::string& path) {
+TriangleMesh importMeshFile(const std::string& path, std::vector<std::string>* warnings) {
     std::error_code error;
     const fs::file_status status = fs::status(path, error);
     if (error || !fs::exists(status))
@@ -165,9 +242,28 @@ TriangleMesh importMeshFile(const std::string& path) {
     if (size > kMaxDataFileBytes)
         refuse(path, "the mesh file is " + std::to_string(size) +
                          " bytes, above vkray's limit of " + std::to_string(kMaxDataFileBytes));
-    Assimp::Importer importer;
-    configure(importer);
-    return meshFromImport(importer.ReadFile(path, kImportSteps), importer, path);
+    // In a child process under a time limit: Assimp may loop or crash on a
+    // damaged file (fuzzing found a 5 s stall on a few hundred bytes); vkray
+    // then refuses the file instead of hanging or dying with it.
+    const std::string answer = runInChild(
+        [&] {
+            std::vector<std::string> kept;
+            Assimp::DefaultLogger::create("", Assimp::Logger::NORMAL, 0);
+            Assimp::DefaultLogger::get()->attachStream(new WarningsKept(kept),
+                                                       Assimp::Logger::Warn);
+            Assimp::Importer importer;
+            configure(importer);
+            const TriangleMesh mesh =
+                meshFromImport(importer.ReadFile(path, kImportSteps), importer, path);
+            return meshBytes(mesh, kept);
+        },
+        kMeshImportSeconds, path + ": error: Assimp reading the mesh file");
+    std::vector<std::string> kept;
+    TriangleMesh mesh = meshOfBytes(answer, kept);
+    if (warnings)
+        for (const std::string& warning : kept) warnings->push_back("Assimp: " + warning);
+    finishMesh(mesh);
+    return mesh;
 }
 
 TriangleMesh importMeshBytes(std::string_view bytes, const std::string& formatHint,
@@ -177,9 +273,11 @@ TriangleMesh importMeshBytes(std::string_view bytes, const std::string& formatHi
                          " bytes, above vkray's limit of " + std::to_string(kMaxDataFileBytes));
     Assimp::Importer importer;
     configure(importer);
-    return meshFromImport(
+    TriangleMesh mesh = meshFromImport(
         importer.ReadFileFromMemory(bytes.data(), bytes.size(), kImportSteps, formatHint.c_str()),
         importer, path);
+    finishMesh(mesh);
+    return mesh;
 }
 
 }  // namespace vkray

@@ -15,6 +15,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "scene/triangle_mesh.h"
 
@@ -26,14 +27,21 @@ bool is3vnPath(const std::string& path);
 
 // `mesh FILE`: meshFrom3vn(load3vn(path)) for a 3VN file, importMeshFile
 // otherwise.
-TriangleMesh loadMeshFile(const std::string& path);
+TriangleMesh loadMeshFile(const std::string& path, std::vector<std::string>* warnings = nullptr);
+
+// The time Assimp may take on one file before it is refused.
+inline constexpr double kMeshImportSeconds = 60;
 
 // The file through Assimp. Refused, with the path: a missing or unreadable
 // file, one that is not a regular file or is larger than kMaxDataFileBytes,
 // what Assimp cannot read (its message), a file without triangles, more than
 // kMaxMeshVertices vertices or kMaxMeshFaces triangles, or a position that is
 // not finite. Files the file names (.mtl, .bin) are read beside it by Assimp.
-TriangleMesh importMeshFile(const std::string& path);
+// Assimp runs in a child process: a file it takes longer than
+// kMeshImportSeconds on, or crashes on, is refused too. Its warnings (faces
+// it dropped, data it ignored: at most 20) go to `warnings`, each
+// "Assimp: ..." without the path.
+TriangleMesh importMeshFile(const std::string& path, std::vector<std::string>* warnings = nullptr);
 
 // The same from bytes in memory; `formatHint` is the extension without its
 // dot ("obj", "ply", "glb"), and `path` names the mesh in messages. Used by

@@ -47,8 +47,11 @@ class MeshLoader {
 public:
     explicit MeshLoader(Scene& scene) : scene_(scene) {}
 
-    // The index into scene.meshes, or the loader's message.
-    std::optional<int> meshFor(const SceneObject& object, std::string* failure) {
+    // The index into scene.meshes, or the loader's message. What the mesh
+    // file's reader warned of goes to `warnings` once, at the first object
+    // that names the file.
+    std::optional<int> meshFor(const SceneObject& object, std::string* failure,
+                               std::vector<std::string>* warnings) {
         if (isBuiltInMesh(object.type)) {
             auto [where, added] = builtIns_.try_emplace(object.type, -1);
             if (added) where->second = add(builtInMesh(object.type));
@@ -57,13 +60,19 @@ public:
         auto [where, added] = files_.try_emplace(fileKey(object.file));
         Loaded& loaded = where->second;
         if (added) {
+            std::vector<std::string> said;
             try {
                 loaded.mesh =
                     add(object.type == ShapeType::Extrude ? extrudeOutline(loadOutline(object.file))
-                                                          : loadMeshFile(object.file));
+                                                          : loadMeshFile(object.file, &said));
             } catch (const Error& e) {
                 loaded.failure = e.what();
             }
+            if (warnings)
+                for (const std::string& warning : said)
+                    warnings->push_back(formatDiagnostic(
+                        object.loc, nullptr, "warning",
+                        "mesh '" + writtenName(object.loc, object.file) + "': " + warning));
         }
         if (loaded.mesh) return loaded.mesh;
         *failure = loaded.failure;
@@ -96,7 +105,7 @@ bool assignMeshes(SceneObject& object, const SceneObject& topLevel, MeshLoader& 
         loaded = assignMeshes(operand, topLevel, loader, lenient, warnings) && loaded;
     if (!isMeshShape(object.type)) return loaded;
     std::string failure;
-    if (const std::optional<int> mesh = loader.meshFor(object, &failure)) {
+    if (const std::optional<int> mesh = loader.meshFor(object, &failure, warnings)) {
         object.mesh = *mesh;
         return loaded;
     }

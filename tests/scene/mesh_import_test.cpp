@@ -207,5 +207,33 @@ TEST(MeshImport, RealModelsFromAssimpTestmodels) {
     }
 }
 
+// What Assimp warns of reaches the user at the mesh word's place: a file
+// with some faces out of range loads without them, and says so.
+TEST(MeshImport, AssimpsWarningsAreShownAtTheMeshWord) {
+    VKRAY_NEED_TESTMODELS();
+    const std::string file = kModels + "glTF2/IndexOutOfRange/IndexOutOfRange.gltf";
+    std::vector<std::string> warnings;
+    const TriangleMesh mesh = importMeshFile(file, &warnings);
+    EXPECT_GT(mesh.triangles.size(), 0u);
+    ASSERT_FALSE(warnings.empty());
+    EXPECT_EQ(warnings[0],
+              "Assimp: Some faces had out-of-range indices. Those faces were dropped.");
+
+    test::TempFolder temp("mesh-import-warnings");
+    writeFile(temp.path() / "scene.sdl", "sphere\nmesh " + file + "\n");
+    std::vector<std::string> shown;
+    const Scene scene = loadScene((temp.path() / "scene.sdl").string(), {}, &shown);
+    EXPECT_EQ(scene.objects.size(), 2u);
+    ASSERT_FALSE(shown.empty());
+    EXPECT_NE(shown[0].find("scene.sdl:2:1: warning: mesh '" + file +
+                            "': Assimp: Some faces had out-of-range indices"),
+              std::string::npos)
+        << shown[0];
+    // A good file warns of nothing.
+    warnings.clear();
+    importMeshFile(kMeshes + "cube.obj", &warnings);
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+}
+
 }  // namespace
 }  // namespace vkray
