@@ -64,6 +64,7 @@ RenderProgress progressTo(ProgressDisplay& display) {
 // once the image is encoded.
 struct StageTimes {
     double scene = 0, encode = 0;
+    double meshFiles = 0, meshBvhs = 0;            // within scene: its mesh files, and their BVHs
     std::optional<double> device;                  // the context was made for this render
     std::optional<gpu::GpuRenderStats> gpu;        // the GPU rendered (in this process)
     std::optional<reference::ReferenceStats> cpu;  // --cpu
@@ -72,6 +73,8 @@ struct StageTimes {
 std::string stageLine(const StageTimes& t, double total) {
     const auto s = [](double seconds) { return fixedDigits(seconds, 3) + " s"; };
     std::string line = "time: scene " + s(t.scene);
+    if (t.meshFiles > 0)
+        line += " (mesh files " + s(t.meshFiles) + ", their BVHs " + s(t.meshBvhs) + ")";
     double counted = t.scene + t.encode;
     if (t.device) {
         line += ", device set-up " + s(*t.device);
@@ -180,6 +183,8 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
     StageTimes times;
     const Scene scene = loadSceneFor(o, err);
     times.scene = total.seconds();
+    times.meshFiles = scene.meshFileSeconds;
+    times.meshBvhs = scene.meshBvhSeconds;
     const std::string output =
         o.outputPath.empty() ? fs::path(o.scenePath).stem().string() + ".png" : o.outputPath;
     requireWritableFolder(output, "output");

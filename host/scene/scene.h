@@ -137,6 +137,9 @@ struct Scene {
     // Filled by loadSceneGeometry (scene/scene_geometry.h): one entry per
     // distinct mesh file, extruded outline or built-in solid.
     std::vector<std::shared_ptr<const TriangleMesh>> meshes;
+    // Wall seconds loadSceneGeometry spent reading mesh and outline files
+    // (their BVHs included), and building those files' BVHs.
+    double meshFileSeconds = 0, meshBvhSeconds = 0;
     std::optional<Camera> camera;  // set by the `camera` extension
 };
 

@@ -14,6 +14,7 @@
 #include "scene/pixmaps.h"
 #include "scene/triangle_mesh.h"
 #include "util/error.h"
+#include "util/stopwatch.h"
 
 namespace vkray {
 
@@ -61,6 +62,7 @@ public:
         Loaded& loaded = where->second;
         if (added) {
             std::vector<std::string> said;
+            const Stopwatch clock;
             try {
                 loaded.mesh =
                     add(object.type == ShapeType::Extrude ? extrudeOutline(loadOutline(object.file))
@@ -68,6 +70,9 @@ public:
             } catch (const Error& e) {
                 loaded.failure = e.what();
             }
+            scene_.meshFileSeconds += clock.seconds();
+            if (loaded.mesh)
+                scene_.meshBvhSeconds += scene_.meshes[std::size_t(*loaded.mesh)]->bvhSeconds;
             if (warnings)
                 for (const std::string& warning : said)
                     warnings->push_back(formatDiagnostic(

@@ -11,6 +11,8 @@
 #include <glm/geometric.hpp>
 #include <tuple>
 
+#include "util/stopwatch.h"
+
 namespace vkray {
 
 bool normalizeSafely(const glm::dvec3& v, glm::dvec3* unit) {
@@ -48,6 +50,7 @@ std::array<std::uint64_t, 3> positionKey(const glm::dvec3& p) {
 }  // namespace
 
 void finishMesh(TriangleMesh& mesh) {
+    const Stopwatch clock;
     std::vector<Aabb> boxes;
     boxes.reserve(mesh.triangles.size());
     mesh.bounds = Aabb{};
@@ -58,6 +61,7 @@ void finishMesh(TriangleMesh& mesh) {
         boxes.push_back(box);
     }
     mesh.bvh = buildBvh(boxes);
+    mesh.bvhSeconds = clock.seconds();
 }
 
 bool isClosedSurface(std::span<const glm::dvec3> positions,

@@ -23,12 +23,13 @@ struct TriangleMesh {
     std::vector<glm::dvec3> positions;  // object (generic) space
     std::vector<glm::dvec3> normals;    // unit length
     std::vector<Triangle> triangles;
-    bool closed = false;  // a closed, consistently oriented surface: has an inside (CSG)
-    Bvh bvh;              // over triangles (order indexes triangles)
-    Aabb bounds;          // of the positions triangles use
+    bool closed = false;    // a closed, consistently oriented surface: has an inside (CSG)
+    Bvh bvh;                // over triangles (order indexes triangles)
+    Aabb bounds;            // of the positions triangles use
+    double bvhSeconds = 0;  // wall clock of finishMesh's BVH build
 };
 
-// Fills bvh and bounds from the triangles.
+// Fills bvh, bounds and bvhSeconds from the triangles.
 void finishMesh(TriangleMesh& mesh);
 
 // 3VN polygons split into fans, the file's normals (normalised) interpolated.

@@ -50,6 +50,20 @@ TEST_F(Cli, CpuRenderTellsPreparationFromTrace) {
     EXPECT_EQ(stages.find("device set-up"), std::string::npos) << stages;
 }
 
+// A scene with a mesh file tells the file's reading, and its BVH's build
+// within it, apart from the rest of the scene's load.
+TEST_F(Cli, RenderTellsTheMeshFilesAndTheirBvhsApart) {
+    scene("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+    RunResult run = vkray("render " + scene("m.sdl", "camera eye 0 0 5\nmesh quad.obj\n") +
+                          " -o " + path("out.png") + " --size 32x24");
+    ASSERT_EQ(run.status, 0) << run.output;
+    const size_t line = run.output.find("\ntime: scene ");
+    ASSERT_NE(line, std::string::npos) << run.output;
+    const std::string stages = run.output.substr(line);
+    EXPECT_NE(stages.find(" s (mesh files "), std::string::npos) << stages;
+    EXPECT_NE(stages.find(" s, their BVHs "), std::string::npos) << stages;
+}
+
 // The EXR's layers hold what the PFM set and a float image of the same
 // render hold (GPU renders repeat bit for bit), and P lies on the unit sphere.
 TEST_F(Cli, ExrAovsHoldThePfmLayersAndTheHitPoints) {
