@@ -11,8 +11,8 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdint>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -82,8 +82,7 @@ std::string runInChild(const std::function<std::string()>& work, double seconds,
     }
     ::close(pipeFds[1]);
 
-    const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     char header[kHeader];
     size_t headerRead = 0;
     std::string answer;

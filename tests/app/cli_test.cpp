@@ -54,8 +54,8 @@ TEST_F(Cli, CpuRenderTellsPreparationFromTrace) {
 // within it, apart from the rest of the scene's load.
 TEST_F(Cli, RenderTellsTheMeshFilesAndTheirBvhsApart) {
     scene("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
-    RunResult run = vkray("render " + scene("m.sdl", "camera eye 0 0 5\nmesh quad.obj\n") +
-                          " -o " + path("out.png") + " --size 32x24");
+    RunResult run = vkray("render " + scene("m.sdl", "camera eye 0 0 5\nmesh quad.obj\n") + " -o " +
+                          path("out.png") + " --size 32x24");
     ASSERT_EQ(run.status, 0) << run.output;
     const size_t line = run.output.find("\ntime: scene ");
     ASSERT_NE(line, std::string::npos) << run.output;
