@@ -190,6 +190,13 @@ std::vector<T> take(const std::string& bytes, size_t& at) {
 
 std::string meshBytes(const TriangleMesh& mesh, const std::vector<std::string>& warnings) {
     std::string bytes;
+    // One allocation: a million triangles are about 50 MB, and each
+    // regrowth would copy them and touch fresh pages again.
+    size_t size = 5 * sizeof(std::uint64_t) + mesh.name.size() + 1 +
+                  (mesh.positions.size() + mesh.normals.size()) * sizeof(glm::dvec3) +
+                  mesh.triangles.size() * sizeof(TriangleMesh::Triangle);
+    for (const std::string& warning : warnings) size += sizeof(std::uint64_t) + warning.size();
+    bytes.reserve(size);
     append(bytes, std::vector<char>(mesh.name.begin(), mesh.name.end()));
     append(bytes, mesh.positions);
     append(bytes, mesh.normals);
