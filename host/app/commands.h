@@ -80,11 +80,10 @@ void reportShader(const gpu::GpuRenderStats& stats, const Options& options, std:
 // `value` with `digits` digits after the point, as the reports print times.
 std::string fixedDigits(double value, int digits);
 
-// --check's default tolerance: GPU float against CPU double. At most this
-// percent of pixels may differ by more than kCheckFailThreshold (silhouette
-// pixels, where float and double can pick different objects), and object ids
-// may differ on at most the same percent.
+// --check's defaults (numerics/agreement.h): a colour differs above
+// kCheckFailThreshold (relative above 1), and no differing pixel may go
+// unexplained by the mode's error bound.
 inline constexpr double kCheckFailThreshold = 0.02;
-inline constexpr double kCheckFailPercent = 0.1;
+inline constexpr double kCheckFailPercent = 0;
 
 }  // namespace vkray

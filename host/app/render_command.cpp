@@ -1,7 +1,6 @@
 #include "app/render_command.h"
 
 #include "app/commands.h"
-#include "app/compare_command.h"
 #include "app/progress.h"
 #include "app/watch.h"
 #include "dist/distributed_render.h"
@@ -10,6 +9,7 @@
 #include "image/aov_images.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
+#include "numerics/agreement.h"
 #include "reference/reference_tracer.h"
 #include "render/camera.h"
 #include "render/render_progress.h"
@@ -194,7 +194,8 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
         requireWritableFolder((fs::path(o.dumpSpirvDirectory) / "x").string(), "--dump-spirv");
 
     RenderSettings settings{o.width, o.height, o.block, o.spp, o.seed};
-    settings.aovs = !o.aovPrefix.empty();  // the object id is always there (--check compares it)
+    // The object id is always there; --check compares depth and normals too.
+    settings.aovs = !o.aovPrefix.empty() || o.check;
     const CameraBasis camera = makeCameraBasis(chooseCamera(scene, o), o.width, o.height);
     out << "scene: " << o.scenePath << " (" << scene.objects.size() << " objects, "
         << scene.lights.size() << " lights), " << o.width << "x" << o.height
@@ -220,12 +221,18 @@ int renderOnce(const Options& o, GpuSession& session, std::ostream& out, std::os
     if (o.check) {
         reference::ReferenceStats referenceStats;
         Frame reference = renderCpu(scene, camera, settings, o, out, err, referenceStats);
-        const CompareOptions tolerance{o.failThreshold.value_or(kCheckFailThreshold),
-                                       o.failPercent.value_or(kCheckFailPercent)};
-        const Image idsGpu = idImage(frame), idsCpu = idImage(reference);
-        out << "gpu vs cpu reference:\n";
-        passed = compareAndReport(colorImage(frame), colorImage(reference), &idsGpu, &idsCpu,
-                                  tolerance, o.diffPath, files, out);
+        AgreementOptions rule;
+        rule.colorThreshold = o.failThreshold.value_or(kCheckFailThreshold);
+        rule.allowedPercent = o.failPercent.value_or(kCheckFailPercent);
+        rule.threads = o.threads;
+        const Agreement agreement =
+            judgeAgreement(scene, camera, settings, run.precision, frame, reference, rule);
+        out << "gpu vs cpu reference (the margin rule, " << precisionName(run.precision)
+            << "'s error bound):\n"
+            << formatAgreement(agreement, rule);
+        if (!o.diffPath.empty())
+            stageImage(files, o.diffPath, agreementImage(frame, reference, agreement));
+        passed = agreement.passed;
         if (!force.comparable)
             out << "verdict         not comparable: " << force.why
                 << "; the result above is not counted (exit status 3)\n";

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace vkray::reference {
 
@@ -48,17 +49,114 @@ const Material& materialOf(const Scene& scene, const WorldHit& hit) {
     return hit.surface ? hit.surface->material : scene.objects[size_t(hit.object)].material;
 }
 
-WhittedShader::WhittedShader(const Scene& scene, const SceneIntersector& intersector)
+namespace {
+
+double largestOf(const glm::dvec3& v) {
+    return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+}
+
+// M's largest scale, bounded above: the Frobenius norm of its linear part.
+double scaleOf(const glm::dmat4& m) {
+    double sum = 0;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) sum += m[c][r] * m[c][r];
+    return std::sqrt(sum);
+}
+
+}  // namespace
+
+double reachOf(const Scene& scene, const SceneObject& object, const glm::dvec3& origin) {
+    if (!object.operands.empty()) {
+        double reach = 0;
+        for (const SceneObject& operand : object.operands)
+            reach = std::max(reach, reachOf(scene, operand, origin));
+        return reach;
+    }
+    const glm::dvec3 generic(object.objectFromWorld * glm::dvec4(origin, 1));
+    return std::max(largestOf(generic), 1.0) * scaleOf(object.worldFromObject);
+}
+
+WhittedShader::WhittedShader(const Scene& scene, const SceneIntersector& intersector,
+                             const RayPerturbation* perturbation)
     : scene_(scene),
       intersector_(intersector),
+      perturbation_(perturbation),
       maxDepth_(std::clamp(scene.maxRecursionDepth, 0, kMaxRecursionDepth)) {}
+
+double WhittedShader::reachAlong(const Ray& ray) const {
+    double reach = largestOf(ray.origin - perturbation_->eye);
+    const glm::dvec3 inverse = 1.0 / glm::normalize(ray.direction);
+    for (std::size_t i = 0; i < scene_.objects.size(); ++i) {
+        const double own = reachOf(scene_, scene_.objects[i], ray.origin);
+        if (own <= reach) continue;
+        const Aabb& box = (*perturbation_->boxes)[i];
+        if (box.empty()) continue;
+        // Padded by twice the bound at this object's reach.
+        Aabb padded = box;
+        if (box.finite()) {
+            const double pad = 2 * (perturbation_->position * own + perturbation_->absolute);
+            padded.lo -= glm::dvec3(pad);
+            padded.hi += glm::dvec3(pad);
+        }
+        if (!box.finite() ||
+            intersectAabb(padded, ray.origin, inverse, 0.0, std::numeric_limits<double>::max()))
+            reach = own;
+    }
+    return reach;
+}
+
+Ray WhittedShader::moved(const Ray& ray, double bound, int level) const {
+    if (!perturbation_->sideways) return ray;
+    const glm::dvec3 d = glm::normalize(ray.direction);
+    const glm::dvec3 across = std::abs(d.x) > 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 e1 = glm::normalize(glm::cross(d, across));
+    const glm::dvec3 e2 = glm::cross(d, e1);
+    const glm::dvec3 side =
+        std::cos(perturbation_->angle) * e1 + std::sin(perturbation_->angle) * e2;
+    const double tilt = level == 0 ? perturbation_->primaryTilt : perturbation_->secondaryTilt;
+    return {ray.origin + bound * side, glm::normalize(d + tilt * side)};
+}
+
+std::optional<WorldHit> WhittedShader::perturbedHit(const Ray& ray, double bound) const {
+    std::optional<WorldHit> best = intersector_.closestHit(ray, 0.0);
+    if (!best || !perturbation_->runnerUp) return best;
+    const double limit = best->t + bound;
+    std::optional<WorldHit> chosen = best;
+    intersector_.forEachCandidate(ray, 0.0, limit, [&](int index) {
+        if (index <= chosen->object) return true;
+        const std::optional<WorldHit> hit =
+            intersectObject(scene_, scene_.objects[std::size_t(index)], index, ray, 0.0);
+        if (hit && hit->t <= limit) chosen = hit;
+        return true;
+    });
+    return chosen;
+}
+
+glm::dvec3 WhittedShader::leave(const WorldHit& hit, const glm::dvec3& direction) const {
+    const glm::dvec3 origin = offsetRayOrigin(hit.point, hit.geometricNormal, direction);
+    if (!perturbation_) return origin;
+    const SceneObject& surface = hit.surface ? *hit.surface : scene_.objects[size_t(hit.object)];
+    const double gpu = perturbation_->position * std::max(largestOf(hit.point - perturbation_->eye),
+                                                          scaleOf(surface.worldFromObject)) +
+                       perturbation_->absolute;
+    const double own = glm::length(origin - hit.point);
+    if (gpu <= own) return origin;
+    const glm::dvec3 side =
+        glm::dot(hit.geometricNormal, direction) < 0 ? -hit.geometricNormal : hit.geometricNormal;
+    return hit.point + side * gpu;
+}
 
 glm::dvec3 WhittedShader::lightThrough(const glm::dvec3& origin,
                                        const glm::dvec3& lightPosition) const {
     const glm::dvec3 toLight = lightPosition - origin;
-    const double distance = glm::length(toLight);
+    double distance = glm::length(toLight);
     if (!(distance > 0)) return glm::dvec3(1);
-    const Ray feeler{origin, toLight / distance};
+    Ray feeler{origin, toLight / distance};
+    if (perturbation_) {
+        const double bound = perturbation_->position * reachAlong(feeler) + perturbation_->absolute;
+        feeler = moved(feeler, bound, 1);
+        distance += perturbation_->feelerSide * bound;
+    }
     double through = 1;
     intersector_.forEachCandidate(feeler, 0.0, distance, [&](int index) {
         const std::optional<WorldHit> hit =
@@ -83,7 +181,7 @@ glm::dvec3 WhittedShader::localShade(const WorldHit& hit, const Material& materi
     const glm::dvec3& m = hit.normal;
     glm::dvec3 color = material.emissive + k * material.ambient * scene_.globalAmbient;
     // Lit lights are on m's side of the surface: the feelers leave from there.
-    const glm::dvec3 feelerOrigin = offsetRayOrigin(p, hit.geometricNormal, m);
+    const glm::dvec3 feelerOrigin = leave(hit, m);
     for (const Light& light : scene_.lights) {
         PixelTrace::LightTerms term;
         const glm::dvec3 toLight = light.position - p;
@@ -109,16 +207,33 @@ glm::dvec3 WhittedShader::localShade(const WorldHit& hit, const Material& materi
     return color;
 }
 
-glm::dvec3 WhittedShader::radiance(const Ray& ray, int level, const Medium& medium,
+glm::dvec3 WhittedShader::radiance(const Ray& given, int level, const Medium& medium,
                                    std::optional<WorldHit>* firstHit, PixelTrace* trace) const {
     // Primary rays start at the eye and secondary rays off the surface
     // (offsetRayOrigin), so t > 0 needs no epsilon.
-    const std::optional<WorldHit> hit = intersector_.closestHit(ray, 0.0);
+    Ray ray = given;
+    std::optional<WorldHit> hit;
+    if (perturbation_) {
+        const double bound = perturbation_->position * reachAlong(given) + perturbation_->absolute;
+        ray = moved(given, bound, level);
+        hit = perturbedHit(ray, bound);
+    } else {
+        hit = intersector_.closestHit(ray, 0.0);
+    }
     if (firstHit) *firstHit = hit;
     if (!hit) return scene_.background;
     const Material& material = materialOf(scene_, *hit);
     const SceneObject& surface = hit->surface ? *hit->surface : scene_.objects[size_t(hit->object)];
-    const glm::dvec3 k = textureColor(scene_, surface, hit->point, hit->normal);
+    glm::dvec3 texturePoint = hit->point;
+    if (perturbation_ && perturbation_->sideways) {
+        const double reach =
+            std::max(largestOf(hit->point - perturbation_->eye),
+                     reachOf(scene_, scene_.objects[size_t(hit->object)], hit->point));
+        texturePoint = moved({hit->point, ray.direction},
+                             perturbation_->texture * reach + perturbation_->absolute, -1)
+                           .origin;
+    }
+    const glm::dvec3 k = textureColor(scene_, surface, texturePoint, hit->normal);
     if (trace) {
         trace->emissive = material.emissive;
         trace->ambient = k * material.ambient * scene_.globalAmbient;
@@ -130,7 +245,7 @@ glm::dvec3 WhittedShader::radiance(const Ray& ray, int level, const Medium& medi
     const glm::dvec3& m = hit->normal;
     if (material.reflectivity > scene_.minReflectivity) {
         const glm::dvec3 r = reflectDirection(d, m);
-        const Ray reflected{offsetRayOrigin(hit->point, hit->geometricNormal, r), r};
+        const Ray reflected{leave(*hit, r), r};
         color += material.reflectivity * radiance(reflected, level + 1, medium);
     }
     if (material.transparency > scene_.minTransparency) {
@@ -139,8 +254,7 @@ glm::dvec3 WhittedShader::radiance(const Ray& ray, int level, const Medium& medi
         const Medium beyond = hit->entering ? medium.entered(material.speedOfLight) : medium.left();
         const std::optional<glm::dvec3> t = refractDirection(d, m, beyond.speed() / medium.speed());
         const glm::dvec3 direction = t ? *t : reflectDirection(d, m);
-        const Ray transmitted{offsetRayOrigin(hit->point, hit->geometricNormal, direction),
-                              direction};
+        const Ray transmitted{leave(*hit, direction), direction};
         color += material.transparency * radiance(transmitted, level + 1, t ? beyond : medium);
     }
     return color;

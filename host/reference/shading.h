@@ -6,6 +6,7 @@
 
 #include "image/pixel_trace.h"
 #include "reference/scene_intersector.h"
+#include "scene/bvh.h"
 #include "scene/scene.h"
 
 #include <glm/vec3.hpp>
@@ -53,10 +54,45 @@ std::optional<glm::dvec3> refractDirection(const glm::dvec3& d, const glm::dvec3
 // operand that was hit, as in Hill ch. 14).
 const Material& materialOf(const Scene& scene, const WorldHit& hit);
 
+// A GPU mode's rounding played on the reference's rays (margins.h): every
+// ray of a sample's tree, before it is intersected, moved `side` of it by
+// `position` of its reach (reachOf) and tilted by `tilt`; its secondary
+// rays leave at least the GPU's offset off the surface; its texture looked
+// up `texture` of the hit's reach to the side; a feeler's blocker within
+// the bound of the light counted (feelerSide +1) or not (-1); and, with
+// `runnerUp`, a hit within the bound of the closest won by the object of
+// the highest index instead of the lowest. Each decision the shader takes
+// can then go the way the GPU's rounding may take it.
+struct RayPerturbation {
+    glm::dvec3 eye{0};         // the GPU's coordinates are the eye's
+    double position = 0;       // relative to the ray's reach
+    double primaryTilt = 0;    // radians, the primary ray
+    double secondaryTilt = 0;  // radians, every secondary ray
+    double texture = 0;        // relative to the hit's reach
+    double absolute = 0;       // added to every bound: a fixed epsilon's
+    double angle = 0;          // the side: radians about the ray
+    bool sideways = true;      // false: no move, no tilt
+    int feelerSide = 1;
+    bool runnerUp = false;
+    // Every object's world box (worldBounds), in scene order: a ray counts
+    // an object's reach where it passes within the bound of its box (a
+    // sphere's silhouette touches its box).
+    const std::vector<Aabb>* boxes = nullptr;
+};
+
+// How far from the GPU's origin (the eye) a ray at `origin` works: the
+// larger of |origin - eye| and, for each object the ray may meet, its
+// generic reach |M^-1 origin| (at least 1) times M's scale (every
+// primitive of a boolean): float places a hit to ~u of it.
+double reachOf(const Scene& scene, const SceneObject& object, const glm::dvec3& origin);
+
 class WhittedShader {
 public:
     // Both must outlive the shader; `intersector` may walk the BVH or not.
-    WhittedShader(const Scene& scene, const SceneIntersector& intersector);
+    // With `perturbation`, every ray is played as it says (it must outlive
+    // the shader too).
+    WhittedShader(const Scene& scene, const SceneIntersector& intersector,
+                  const RayPerturbation* perturbation = nullptr);
 
     // What a ray sees: the background where it hits nothing, else Hill's
     // shade() at its hit, `level` deep in the tree of secondary rays (0:
@@ -76,9 +112,15 @@ public:
 private:
     glm::dvec3 localShade(const WorldHit& hit, const Material& material, const glm::dvec3& v,
                           const glm::dvec3& k, PixelTrace* trace) const;
+    // The perturbed parts (perturbation_ set).
+    double reachAlong(const Ray& ray) const;
+    Ray moved(const Ray& ray, double reach, int level) const;
+    std::optional<WorldHit> perturbedHit(const Ray& ray, double bound) const;
+    glm::dvec3 leave(const WorldHit& hit, const glm::dvec3& direction) const;
 
     const Scene& scene_;
     const SceneIntersector& intersector_;
+    const RayPerturbation* perturbation_;
     int maxDepth_;
 };
 

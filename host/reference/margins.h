@@ -1,0 +1,65 @@
+// Decision margins: what the CPU reference's value of a pixel can be when
+// every ray of its samples is moved by a GPU mode's error bound. A GPU pixel
+// that differs from the reference's is explained where it lies within that
+// span: some decision (the closest hit and its runner-up, a silhouette or
+// an edge, a texture cell's border, a feeler's blocker, a refraction's
+// critical angle) is within the bound of going the other way. Anywhere
+// else a difference is the GPU's fault.
+#pragma once
+
+#include "render/camera.h"
+#include "scene/scene.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace vkray::reference {
+
+// A GPU mode's error, relative to how far from the eye a ray works (its
+// reach: shading.h's reachOf): where float places a hit and from where a
+// secondary ray leaves, how far a ray's direction may turn, and where a
+// texture is looked up.
+struct ErrorBound {
+    double position = 0;
+    double primaryTilt = 0, secondaryTilt = 0;
+    double texture = 0;
+    double absolute = 0;  // a fixed epsilon's (naive)
+};
+
+// The reference's value of one pixel (or block) over every play of the bound.
+struct PixelSpan {
+    glm::vec3 low{0}, high{0};  // per channel: the mean over samples of each one's least / most
+    struct FirstHit {
+        std::int32_t id = -1;
+        float depth = 0;
+        glm::vec3 normal{0};
+    };
+    std::vector<FirstHit> firstHits;  // sample 0's, one a play, the reference's own first
+};
+
+// The number of plays: the reference itself, eight sides of the bound, and
+// the runner-up winning every tie within it.
+inline constexpr int kMarginPlays = 10;
+
+class MarginTracer {
+public:
+    // All must outlive the tracer.
+    MarginTracer(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
+                 const ErrorBound& bound);
+    ~MarginTracer();
+
+    // The pixel (x, y)'s span; with a block, (x, y) is the block's first pixel.
+    // Thread-safe.
+    PixelSpan spanOf(int x, int y) const;
+
+private:
+    struct Plays;
+    const CameraBasis& camera_;
+    RenderSettings settings_;
+    std::unique_ptr<Plays> plays_;
+};
+
+}  // namespace vkray::reference
