@@ -11,6 +11,7 @@
 #include "image/aov_images.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
+#include "numerics/agreement.h"
 #include "reference/reference_tracer.h"
 #include "util/error.h"
 
@@ -200,7 +201,8 @@ private:
             // Refused here, at its place; --precision auto chooses from the
             // scene's own camera at each load, not at each move of the view.
             const CameraBasis basis = makeCameraBasis(camera, o_.width, o_.height);
-            tracer_.setPrecision(precisionInForce(scene, basis, o_, out_, err_).precision);
+            precision_ = precisionInForce(scene, basis, o_, out_, err_).precision;
+            tracer_.setPrecision(precision_);
             if (first || !sameCamera(camera, sceneCamera_)) camera_ = camera;
             sceneCamera_ = camera;
             scene_ = std::move(scene);
@@ -435,21 +437,43 @@ private:
         presenter_.setCpuReference(*frame);
         cpuDepth_ = finiteRange(frame->depth);
         cpuColor_ = colorImage(*frame);
+        cpuFrame_ = std::move(*frame);
         cpuValid_ = true;
         out_ << "cpu reference ready" << std::endl;
         compareWithCpu();
         show();
     }
 
-    // The GPU's picture against the CPU reference, as `render --check` does.
+    // The GPU's picture against the CPU reference. Complete, by `render
+    // --check`'s rule on the colours (numerics/agreement.h; the picture has
+    // no AOVs on the host, so ids, depth and normals are the reference's);
+    // before, the pixels over the threshold.
     void compareWithCpu() {
         if (!showDifference_ || !cpuValid_) return;
-        const CompareOptions tolerance{settings_.threshold, kCheckFailPercent};
-        const CompareResult result = compareImages(presenter_.pictureColor(), cpuColor_, tolerance);
-        difference_ = result.pixelsOverThreshold;
-        out_ << "difference: " << result.pixelsOverThreshold << " of " << result.pixelCount
-             << " pixels with error > " << settings_.threshold
-             << (complete() ? "" : " (the GPU's progression is not complete)") << std::endl;
+        const Image picture = presenter_.pictureColor();
+        if (!complete() || !scene_) {
+            const CompareResult result =
+                compareImages(picture, cpuColor_, {settings_.threshold, kCheckFailPercent});
+            difference_ = result.pixelsOverThreshold;
+            out_ << "difference: " << result.pixelsOverThreshold << " of " << result.pixelCount
+                 << " pixels with error > " << settings_.threshold
+                 << " (the GPU's progression is not complete)" << std::endl;
+            return;
+        }
+        Frame gpu = cpuFrame_;
+        for (std::size_t i = 0; i < gpu.pixelCount(); ++i)
+            gpu.color[i] = {picture.pixels[3 * i], picture.pixels[3 * i + 1],
+                            picture.pixels[3 * i + 2]};
+        AgreementOptions rule;
+        rule.colorThreshold = settings_.threshold;
+        rule.threads = o_.threads;
+        const RenderSettings settings{o_.width, o_.height, 1, o_.spp, o_.seed};
+        const Agreement a = judgeAgreement(*scene_, makeCameraBasis(camera_, o_.width, o_.height),
+                                           settings, precision_, gpu, cpuFrame_, rule);
+        difference_ = a.colors;
+        out_ << "difference: " << a.colors << " of " << a.pixels << " pixels with error > "
+             << settings_.threshold << "; " << a.setAside << " set aside, " << a.unexplained
+             << " unexplained (the margin rule, " << precisionName(precision_) << ")" << std::endl;
     }
 
     static std::pair<float, float> finiteRange(const std::vector<float>& depths) {
@@ -562,6 +586,8 @@ private:
     CpuReference cpu_;
     bool cpuValid_ = false;  // the CPU reference shown is of the current camera and scene
     Image cpuColor_;
+    Frame cpuFrame_;
+    Precision precision_ = Precision::Robust;
     std::pair<float, float> cpuDepth_{0, 0};
     std::optional<std::size_t> difference_;
 

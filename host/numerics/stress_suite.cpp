@@ -151,7 +151,7 @@ Arithmetic arithmeticOf(const std::string& mode) {
 
 bool withinBounds(const ModeMetrics& m) {
     return m.ran && m.flips == 0 && m.wrongId == 0 && m.acne == 0 && m.shadowFlips == 0 &&
-           m.exitErrors == 0 && m.tRatioMax <= kTAllowanceMultiple &&
+           m.exitErrors == 0 && m.shippedDiffer == 0 && m.tRatioMax <= kTAllowanceMultiple &&
            m.normalRatioMax <= kNormalAllowanceMultiple;
 }
 
@@ -247,6 +247,27 @@ std::vector<ModeMetrics> decodeRows(const std::string& bytes) {
     return rows;
 }
 
+namespace {
+
+// The pixels where two frames of the same rays differ (ShippedDiffer's
+// figures, ModeMetrics).
+std::size_t pixelsApart(const Frame& a, const Frame& b) {
+    std::size_t apart = 0;
+    for (std::size_t i = 0; i < a.pixelCount(); ++i) {
+        const glm::vec3 colour = glm::abs(a.color[i] - b.color[i]);
+        const glm::vec3 normal = glm::abs(a.normal[i] - b.normal[i]);
+        const bool depthsApart = std::isfinite(a.depth[i]) != std::isfinite(b.depth[i]) ||
+                                 (std::isfinite(a.depth[i]) &&
+                                  std::abs(a.depth[i] - b.depth[i]) > 1e-5f * std::abs(b.depth[i]));
+        apart += a.id[i] != b.id[i] || depthsApart ||
+                 std::max({colour.x, colour.y, colour.z}) > 1e-4f ||
+                 std::max({normal.x, normal.y, normal.z}) > 1e-4f;
+    }
+    return apart;
+}
+
+}  // namespace
+
 std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Context* context,
                                        const StressOptions& options, std::ostream* log,
                                        StressPicture* picture) {
@@ -285,13 +306,15 @@ std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Contex
         // The time: the fastest of three plain renders (the first also warms
         // caches); the numbers: the stress-output variant's, the same rays.
         double best = std::numeric_limits<double>::infinity();
+        Frame shipped;
         for (int run = 0; run < 3; ++run) {
             gpu::GpuRenderStats stats;
-            tracer.render(scene, camera, settings, &stats);
+            shipped = tracer.render(scene, camera, settings, &stats);
             best = std::min(best, stats.renderSeconds);
         }
         std::vector<StressSample> samples;
         const Frame frame = tracer.renderStressOutput(scene, camera, settings, samples);
+        const std::size_t shippedDiffer = pixelsApart(shipped, frame);
         const Arithmetic a = arithmeticOf(precisionName(precision));
         m = compareWithOracle(oracle, samples, a);
         const SecondaryStats secondary = checkSecondaryRays(
@@ -302,6 +325,7 @@ std::vector<ModeMetrics> runStressCase(const StressCase& stressCase, gpu::Contex
         m.shadowEdges = secondary.shadowEdges;
         m.refracted = secondary.refracted;
         m.exitErrors = secondary.exitErrors;
+        m.shippedDiffer = shippedDiffer;
         if (picture)
             picture->modes.push_back(markedPicture(precisionName(precision), frame, oracle, samples,
                                                    a, secondary.failedPixels));

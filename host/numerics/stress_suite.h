@@ -79,10 +79,16 @@ struct ModeMetrics {
     std::size_t feelers = 0, acne = 0;  // feelers: pixels with a feeler compared
     std::size_t shadowFlips = 0, shadowEdges = 0;
     std::size_t refracted = 0, exitErrors = 0;
+    // Pixels where `render`'s own variant (primary cover, feeler hints and
+    // world-space triangles on) shows another object, depth (beyond 1e-5 of
+    // it), normal (1e-4) or colour (1e-4) than the stress-output variant the
+    // numbers come from: 0, or the numbers do not speak for what ships.
+    std::size_t shippedDiffer = 0;
 };
 
 // The bounds a mode must meet on a case to pass it: no flips, no wrong ids,
-// no acne, no shadow flips, no exit errors, and at every compared pixel
+// no acne, no shadow flips, no exit errors, render's own variant drawing the
+// same pixels (shippedDiffer 0), and at every compared pixel
 //   |t - t*| / t* <= kTAllowanceMultiple (u t + u_double tWorld),
 //   angle(n, n*) <= kNormalAllowanceMultiple (u normal + u_double normalWorld),
 // with u the mode's unit roundoff (2^-24 for naive and robust, 2^-53 for

@@ -228,12 +228,14 @@ TEST_F(Cli, CompareBeyondToleranceExitsTwo) {
     EXPECT_NE(run.output.find("FAIL"), std::string::npos) << run.output;
 }
 
-TEST_F(Cli, CheckRendersBothAndReportsIds) {
+TEST_F(Cli, CheckRendersBothAndJudgesByTheMarginRule) {
     RunResult run = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png") +
                           " --size 64x48 --check --diff " + path("diff.png"));
     EXPECT_EQ(run.status, 0) << run.output;
-    EXPECT_NE(run.output.find("object ids"), std::string::npos) << run.output;
-    EXPECT_NE(run.output.find("RMSE"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("of 3072 pixels"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("ids "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("unexplained     0 pixels"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("result          PASS"), std::string::npos) << run.output;
     EXPECT_TRUE(fs::exists(dir / "diff.png"));
 }
 

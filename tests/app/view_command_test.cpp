@@ -368,8 +368,9 @@ TEST_F(View, CpuReferenceViewIsRenderCpu) {
 }
 
 TEST_F(View, DifferenceCountsThePixelsCheckCounts) {
-    // A threshold low enough that float against double shows: the count is
-    // `render --check`'s, for the same threshold.
+    // A threshold low enough that float against double shows: the count of
+    // colours over it is `render --check`'s, for the same threshold, and so
+    // is the margin rule's verdict on them.
     const std::string s = scene("s.sdl", kScene);
     RunResult shown = view(s + kSize + " --validation --fail 1e-7 --frames 8 --screenshot " +
                            path("diff.png") + " --events " + events("key d\nwait-cpu\n"));
@@ -382,10 +383,11 @@ TEST_F(View, DifferenceCountsThePixelsCheckCounts) {
     RunResult check =
         render(s + kSize + " --check --fail 1e-7 --failpercent 100 -o " + path("gpu.png"));
     ASSERT_EQ(check.status, 0) << check.output;
-    const long checkCount = numberAfter(check.output, "over threshold  ");
+    const long checkCount = numberAfter(check.output, "%): colour ");
     ASSERT_NE(check.output.find(" of 3072 pixels"), std::string::npos) << check.output;
     EXPECT_EQ(viewCount, checkCount);
     EXPECT_GT(viewCount, 0) << "the threshold is to make some pixels differ";
+    EXPECT_NE(line.find("(the margin rule, robust)"), std::string::npos) << shown.output;
     // The heat map: red to yellow where the error is over the threshold, grey where not.
     const Image heat = readImage(path("diff.png"));
     int hot = 0;
