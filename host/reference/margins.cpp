@@ -32,6 +32,7 @@ MarginTracer::MarginTracer(const Scene& scene, const CameraBasis& camera,
     base.position = bound.position;
     base.primaryTilt = bound.primaryTilt;
     base.secondaryTilt = bound.secondaryTilt;
+    base.secondaryPosition = bound.secondaryPosition;
     base.texture = bound.texture;
     base.absolute = bound.absolute;
     for (int side = 0; side < 8; ++side) {

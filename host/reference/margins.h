@@ -25,6 +25,7 @@ namespace vkray::reference {
 struct ErrorBound {
     double position = 0;
     double primaryTilt = 0, secondaryTilt = 0;
+    double secondaryPosition = 0;  // a secondary ray's origin, of its distance from the eye
     double texture = 0;
     double absolute = 0;  // a fixed epsilon's (naive)
 };

@@ -105,6 +105,13 @@ double WhittedShader::reachAlong(const Ray& ray) const {
     return reach;
 }
 
+double WhittedShader::boundOf(const Ray& ray, int level) const {
+    const double bound = perturbation_->position * reachAlong(ray) + perturbation_->absolute;
+    if (level == 0) return bound;
+    return std::max(bound,
+                    perturbation_->secondaryPosition * largestOf(ray.origin - perturbation_->eye));
+}
+
 Ray WhittedShader::moved(const Ray& ray, double bound, int level) const {
     if (!perturbation_->sideways) return ray;
     const glm::dvec3 d = glm::normalize(ray.direction);
@@ -135,15 +142,21 @@ std::optional<WorldHit> WhittedShader::perturbedHit(const Ray& ray, double bound
 glm::dvec3 WhittedShader::leave(const WorldHit& hit, const glm::dvec3& direction) const {
     const glm::dvec3 origin = offsetRayOrigin(hit.point, hit.geometricNormal, direction);
     if (!perturbation_) return origin;
+    // The GPU's step (shaders/precision.glsl, offsetOrigin): the bound of the
+    // point's distance from the eye or the object's scale, taken along the
+    // new ray (up to 8 steps), the rest along the normal.
     const SceneObject& surface = hit.surface ? *hit.surface : scene_.objects[size_t(hit.object)];
-    const double gpu = perturbation_->position * std::max(largestOf(hit.point - perturbation_->eye),
-                                                          scaleOf(surface.worldFromObject)) +
-                       perturbation_->absolute;
-    const double own = glm::length(origin - hit.point);
-    if (gpu <= own) return origin;
-    const glm::dvec3 side =
+    const double step =
+        perturbation_->position *
+            std::max(largestOf(hit.point - perturbation_->eye), scaleOf(surface.worldFromObject)) +
+        perturbation_->absolute;
+    if (step <= glm::length(origin - hit.point)) return origin;
+    const glm::dvec3 n =
         glm::dot(hit.geometricNormal, direction) < 0 ? -hit.geometricNormal : hit.geometricNormal;
-    return hit.point + side * gpu;
+    const glm::dvec3 a = glm::normalize(direction);
+    const double c = glm::dot(n, a);
+    const double forward = c > 0 ? std::min(step / c, 8 * step) : 0.0;
+    return hit.point + forward * a + std::max(step - forward * c, 0.0) * n;
 }
 
 glm::dvec3 WhittedShader::lightThrough(const glm::dvec3& origin,
@@ -153,7 +166,7 @@ glm::dvec3 WhittedShader::lightThrough(const glm::dvec3& origin,
     if (!(distance > 0)) return glm::dvec3(1);
     Ray feeler{origin, toLight / distance};
     if (perturbation_) {
-        const double bound = perturbation_->position * reachAlong(feeler) + perturbation_->absolute;
+        const double bound = boundOf(feeler, 1);
         feeler = moved(feeler, bound, 1);
         distance += perturbation_->feelerSide * bound;
     }
@@ -214,7 +227,7 @@ glm::dvec3 WhittedShader::radiance(const Ray& given, int level, const Medium& me
     Ray ray = given;
     std::optional<WorldHit> hit;
     if (perturbation_) {
-        const double bound = perturbation_->position * reachAlong(given) + perturbation_->absolute;
+        const double bound = boundOf(given, level);
         ray = moved(given, bound, level);
         hit = perturbedHit(ray, bound);
     } else {
