@@ -2,10 +2,11 @@
 # The numerics envelope (docs/numerics.md, "Envelope"): sweeps of distance,
 # scale and squash, each scene rendered as `vkray render SCENE --size
 # 160x120 --check --precision MODE` does, one line per render: the share of
-# pixels whose colour is off by more than 0.02, the share of object ids that
-# differ, and render --check's verdict (PASS: colour on all but 0.1 % of the
-# pixels, ids on 99.9 %). The swept scenes are written to DIR (default: a
-# temporary folder, removed after); the fixed ones are tests/data/envelope/.
+# pixels that differ (colour above 0.02, id, depth or normal), the share the
+# margin rule sets aside, and render --check's verdict (PASS: no pixel
+# unexplained; docs/gpu-vs-reference.md, "The margin rule"). The swept
+# scenes are written to DIR (default: a temporary folder, removed after); the
+# fixed ones are tests/data/envelope/.
 #
 #   scripts/envelope.sh [--vkray BINARY] [--keep DIR] [SWEEP...]
 #   sweeps: near (huge shapes seen from close), far (a unit sphere seen from
@@ -34,15 +35,15 @@ fi
 
 # check SCENE MODE LABEL: one line of figures.
 check() {
-    local out over ids verdict
+    local out differ aside verdict
     out="$("$vkray" render "$1" --size 160x120 --check --precision "$2" -o "$dir/out.png" 2>&1 || true)"
-    over="$(sed -n 's/^over threshold .*(\([^ ]*\) %).*/\1/p' <<<"$out")"
-    ids="$(sed -n 's/^object ids .*(\([^ ]*\) %).*/\1/p' <<<"$out")"
+    differ="$(sed -n 's/^differing .*(\([^ ]*\) %):.*/\1/p' <<<"$out")"
+    aside="$(sed -n 's/^set aside .*(\([^ ]*\) %):.*/\1/p' <<<"$out")"
     verdict="$(sed -n 's/^result *//p' <<<"$out")"
     if [ -z "$verdict" ]; then
         verdict="error: $(grep -m1 'error' <<<"$out" | cut -c1-100)"
     fi
-    printf '%-44s %-7s colour off %8s %%  ids differ %8s %%  %s\n' "$3" "$2" "${over:--}" "${ids:--}" "$verdict"
+    printf '%-44s %-7s differ %8s %%  set aside %8s %%  %s\n' "$3" "$2" "${differ:--}" "${aside:--}" "$verdict"
 }
 
 # A shape of size R seen from H above its surface at the point (0, R, 0) of

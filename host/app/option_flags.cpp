@@ -293,14 +293,15 @@ const std::vector<FlagSpec>& flagSpecs() {
          [](CLI::App& a, Options& o, const std::string& h) {
              return a.add_option("--diff", o.diffPath, h)->type_name("FILE");
          }},
-        {"--fail", "with --check: per-pixel error threshold (idiff --fail)",
+        {"--fail", "with --check: colour difference threshold (default 0.02, relative above 1)",
          [](CLI::App& a, Options& o, const std::string& h) {
              return valueFlag(a, "--fail", h, "T", [&o](const std::string& v) {
                  o.failThreshold = parseNumber("--fail", v);
                  if (*o.failThreshold < 0) throw Error("--fail: must not be negative");
              });
          }},
-        {"--failpercent", "with --check: percent of pixels allowed over T (idiff --failpercent)",
+        {"--failpercent",
+         "with --check: percent of pixels allowed to differ unexplained (default 0)",
          [](CLI::App& a, Options& o, const std::string& h) {
              return valueFlag(a, "--failpercent", h, "P", [&o](const std::string& v) {
                  o.failPercent = parseNumber("--failpercent", v);

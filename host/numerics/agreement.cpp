@@ -147,15 +147,16 @@ bool explains(const reference::PixelSpan& span, const Frame& gpu, std::size_t i,
 }  // namespace
 
 reference::ErrorBound errorBoundOf(Precision precision) {
-    switch (precision) {
-    case Precision::Naive: return {kFloatBound, kFloatBound, kFloatBound, kFloatBound, 1e-4};
-    case Precision::Robust: return {kFloatBound, kFloatBound, kFloatBound, kFloatBound, 0};
-    case Precision::Fp64:
-        // The ray geometry in double; shading (normals, so every secondary
-        // ray's direction) and textures in float.
-        return {kDoubleBound, kDoubleBound, kFloatBound, kFloatBound, 0};
-    }
-    return {};
+    reference::ErrorBound bound;
+    bound.position = precision == Precision::Fp64 ? kDoubleBound : kFloatBound;
+    bound.primaryTilt = bound.position;
+    // Shading is float in every mode: the shaded point (where secondary rays
+    // leave, in the eye's frame), the normal (their directions), the textures.
+    bound.secondaryTilt = kFloatBound;
+    bound.secondaryPosition = kFloatBound;
+    bound.texture = kFloatBound;
+    bound.absolute = precision == Precision::Naive ? 1e-4 : 0;
+    return bound;
 }
 
 Agreement judgeAgreement(const Scene& scene, const CameraBasis& camera,
