@@ -277,10 +277,11 @@ bool intersectObject(uint index, uint kind, uint shapes, rvec3 origin, rvec3 dir
 #include "scene_walk.glsl"
 
 // The unit direction of the primary ray through image point (x right, y
-// down, in pixels).
-rvec3 primaryDirection(vec2 imagePoint) {
-    rvec2 screen = rvec2(2.0 * real(imagePoint.x) / real(frame.image.x) - 1.0,
-                         1.0 - 2.0 * real(imagePoint.y) / real(frame.image.y));
+// down, in pixels), in the ray's precision: fp64's jittered samples would
+// otherwise be placed to float's rounding of the pixel's coordinates.
+rvec3 primaryDirection(rvec2 imagePoint) {
+    rvec2 screen = rvec2(2.0 * imagePoint.x / real(frame.image.x) - 1.0,
+                         1.0 - 2.0 * imagePoint.y / real(frame.image.y));
 #if VKRAY_PRECISION_FP64
     GpuDoubleCamera camera = doubleCamera;
 #else
@@ -316,7 +317,7 @@ rvec3 sampleDirection(uint k) {
                       gridOffsetY(frame.sampling.y, rayPixelIndex, k, sampleGridColumns,
                                   sampleGridRows));
 #endif
-    return primaryDirection(vec2(rayPixel) + offset * float(frame.image.z));
+    return primaryDirection(rvec2(rayPixel) + rvec2(offset) * real(frame.image.z));
 }
 
 #if VKRAY_DEBUG_PIXEL

@@ -28,6 +28,10 @@ struct EnvelopeLimits {
     // smallest scale over its distance from the eye at least this; its
     // refracted rays start a step inside it that grows with that distance.
     double thinnestPerDistance;
+    // A textured plane with its horizon in view: its hits there lie
+    // arbitrarily far, its cells finer than a pixel, and only the margin
+    // rule tells a rounding from a wrong texture.
+    bool texturedHorizon;
 };
 
 // Two families of scenes, each with its limits (docs/numerics.md,
@@ -59,7 +63,7 @@ struct EnvelopeExcess {
 // order), |M^-1 eye| per checker cell or wood ring, and a refracting solid's
 // thinnest scale over its distance from the eye or the origin; then the
 // eye's distance from the world's origin, and a textured plane whose horizon
-// is in view (in no mode's envelope). A lone bounded object is held to the
+// is in view (in fp64's envelope, not robust's). A lone bounded object is held to the
 // lone figures, several objects to the scenes'. Not taken: R / H of a huge
 // object seen from close above it, and pixmap textures' texels.
 std::vector<EnvelopeExcess> envelopeExcesses(const Scene& scene, const CameraBasis& camera,

@@ -242,9 +242,14 @@ glm::dvec3 WhittedShader::radiance(const Ray& given, int level, const Medium& me
         const double reach =
             std::max(largestOf(hit->point - perturbation_->eye),
                      reachOf(scene_, scene_.objects[size_t(hit->object)], hit->point));
-        texturePoint = moved({hit->point, ray.direction},
-                             perturbation_->texture * reach + perturbation_->absolute, -1)
-                           .origin;
+        // To the side and along the ray (a float point is rounded in every
+        // coordinate; seen at grazing incidence, along the ray is across the
+        // cells).
+        const Ray aside = moved({hit->point, ray.direction},
+                                perturbation_->texture * reach + perturbation_->absolute, -1);
+        texturePoint = aside.origin + double(perturbation_->feelerSide) *
+                                          glm::length(aside.origin - hit->point) *
+                                          glm::normalize(ray.direction);
     }
     const glm::dvec3 k = textureColor(scene_, surface, texturePoint, hit->normal);
     if (trace) {

@@ -81,16 +81,20 @@ TEST(Envelope, TexturesCountTheirCellsAcrossTheEyesDistance) {
 }
 
 // A checkered floor: looking down at it, its farthest visible point counts;
-// with its horizon in view it is in no mode's envelope.
-TEST(Envelope, ATexturedPlanesHorizonIsInNoEnvelope) {
+// with its horizon in view it is outside robust's envelope, inside fp64's.
+TEST(Envelope, ATexturedPlanesHorizonIsFp64s) {
     const std::string floor =
         "sphere\npush rotate -90 1 0 0 texture 1 parameters 4 1 1 1 1 plane pop\n";
     EXPECT_TRUE(robust(seen("camera eye 0 10 0.001 look 0 0 0 fov 40\n" + floor)).empty());
     const Seen level = seen("camera eye 0 2 9 look 0 2 0 fov 40\n" + floor);
     const PrecisionChoice choice = choosePrecision(level.scene, level.camera);
     EXPECT_EQ(choice.precision, Precision::Fp64);
-    ASSERT_EQ(choice.beyondEvery.size(), 1u);
-    EXPECT_EQ(choice.beyondEvery[0].where.str(), "s.sdl:3:54");
+    ASSERT_EQ(choice.outside.size(), 1u);
+    EXPECT_EQ(choice.outside[0].where.str(), "s.sdl:3:54");
+    EXPECT_EQ(describe(choice.outside[0], Precision::Robust),
+              "the 'plane' at s.sdl:3:54 is a textured plane with its horizon in view (outside "
+              "robust's envelope)");
+    EXPECT_TRUE(choice.beyondEvery.empty());
     // Untextured, the horizon is no matter.
     EXPECT_TRUE(robust(seen("camera eye 0 2 9 look 0 2 0\nsphere\n"
                             "push rotate -90 1 0 0 plane pop\n"))
