@@ -95,8 +95,8 @@ std::vector<BenchScene> randomSet(std::uint32_t first, int n) {
         const RandomScene r = randomScene(seed);
         const std::string path = std::string(folder) + "/seed-" + std::to_string(seed) + ".sdl";
         writeFileAtomically(path, r.sdl);
-        if (!r.meshFile.empty())
-            writeFileAtomically(std::string(folder) + "/" + r.meshFile, r.meshText);
+        for (const SideFile& file : r.files)
+            writeFileAtomically(std::string(folder) + "/" + file.name, file.bytes);
         BenchScene scene{"seed-" + std::to_string(seed), "seed " + std::to_string(seed),
                          [path] { return loadScene(path, {}, nullptr); }};
         scene.random = true;

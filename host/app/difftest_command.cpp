@@ -10,6 +10,7 @@
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "numerics/agreement.h"
+#include "numerics/envelope.h"
 #include "reference/reference_tracer.h"
 #include "render/camera.h"
 #include "scene/scene_geometry.h"
@@ -30,9 +31,11 @@ namespace fs = std::filesystem;
 
 struct Verdict {
     bool agreed = false;
+    Precision precision = Precision::Robust;  // the mode rendered (auto's choice for an open scene)
     std::size_t setAside = 0, pixels = 0;
-    std::string refusal;  // the GPU's error, when it refused the scene
-    std::string figures;  // what the comparison found
+    std::string refusal;        // the reader's or the GPU's error, when either refused the scene
+    std::string notComparable;  // what passes fp64's envelope too, for an open scene
+    std::string figures;        // what the comparison found
 };
 
 // The run's GPU tracers, one per shader variant and mode, the 64 used last
@@ -77,16 +80,27 @@ private:
 // One scene on both renderers at its own settings, judged by the margin
 // rule (numerics/agreement.h): every differing pixel explained by the
 // mode's error bound, or the scene disagrees.
+// An open scene (RandomScene::open) is rendered in the mode `--precision
+// auto` chooses, and not compared where it passes fp64's envelope too.
 Verdict judge(const std::string& path, const RandomScene& r, Tracers& tracers, const Options& o) {
-    const Scene scene = loadScene(path, {}, nullptr);
     Verdict v;
+    v.precision = r.precision;
     try {
+        const Scene scene = loadScene(path, {}, nullptr);
         RenderSettings settings{r.width, r.height, r.block, r.spp, r.sampleSeed};
         settings.aovs = true;
         const Camera camera = scene.camera ? *scene.camera : autoCamera(scene);
         const CameraBasis basis = makeCameraBasis(camera, settings.width, settings.height);
+        if (r.open) {
+            const PrecisionChoice choice = choosePrecision(scene, basis);
+            v.precision = choice.precision;
+            if (!choice.beyondEvery.empty()) {
+                v.notComparable = describe(choice.beyondEvery.front(), Precision::Fp64);
+                return v;
+            }
+        }
         const Frame gpu =
-            tracers.forScene(scene, settings, r.precision).render(scene, basis, settings);
+            tracers.forScene(scene, settings, v.precision).render(scene, basis, settings);
         reference::ReferenceOptions reference;
         reference.threads = o.threads;
         const Frame cpu = reference::render(scene, basis, settings, reference);
@@ -94,7 +108,7 @@ Verdict judge(const std::string& path, const RandomScene& r, Tracers& tracers, c
         rule.colorThreshold = kCheckFailThreshold;
         rule.allowedPercent = kCheckFailPercent;
         rule.threads = o.threads;
-        const Agreement a = judgeAgreement(scene, basis, settings, r.precision, gpu, cpu, rule);
+        const Agreement a = judgeAgreement(scene, basis, settings, v.precision, gpu, cpu, rule);
         v.agreed = a.passed;
         v.setAside = a.setAside;
         v.pixels = a.pixels;
@@ -107,6 +121,8 @@ Verdict judge(const std::string& path, const RandomScene& r, Tracers& tracers, c
         v.figures = text;
     } catch (const gpu::BeyondTheLoopLimit& refused) {  // right or refused: refused, and said
         v.refusal = refused.what();
+    } catch (const Error& refused) {  // the reader's (a generator's bug) or the GPU's own limits
+        v.refusal = refused.what();
     }
     return v;
 }
@@ -115,7 +131,7 @@ std::string commandFor(const std::string& path, const RandomScene& r) {
     return "vkray render " + path + " --size " + std::to_string(r.width) + "x" +
            std::to_string(r.height) + " --spp " + std::to_string(r.spp) + " --seed " +
            std::to_string(r.sampleSeed) + " --block " + std::to_string(r.block) + " --precision " +
-           precisionName(r.precision) + " --check";
+           (r.open ? "auto" : precisionName(r.precision)) + " --check";
 }
 
 }  // namespace
@@ -126,8 +142,8 @@ int runDifftest(const Options& o, std::ostream& out, std::ostream& err) {
     gpu::Context context(gpu::ContextOptions{o.device, false, 0});
     Tracers tracers(context, o);
     const Stopwatch stopwatch;
-    std::map<Precision, int> agreed, drawn;
-    int disagreed = 0, refused = 0;
+    std::map<std::string, int> agreed, drawn;  // by the mode's name, auto's as "auto (fp64)"
+    int disagreed = 0, refused = 0, notComparable = 0;
     std::size_t setAside = 0, pixels = 0;
     const Precision* only = o.precisionGiven ? &o.precision : nullptr;
     for (int i = 0; i < o.difftestScenes; ++i) {
@@ -136,14 +152,24 @@ int runDifftest(const Options& o, std::ostream& out, std::ostream& err) {
         const RandomScene r = randomScene(seed, only);
         const std::string path = (dir / ("seed-" + std::to_string(seed) + ".sdl")).string();
         writeFileAtomically(path, r.sdl);
-        if (!r.meshFile.empty()) writeFileAtomically((dir / r.meshFile).string(), r.meshText);
-        ++drawn[r.precision];
+        for (const SideFile& file : r.files) writeFileAtomically((dir / file.name).string(), file.bytes);
         const Verdict v = judge(path, r, tracers, o);
+        const std::string mode = r.open ? std::string("auto (") + precisionName(v.precision) + ")"
+                                        : std::string(precisionName(v.precision));
+        if (!v.notComparable.empty()) {  // counted apart, neither agreed nor not
+            ++notComparable;
+            out << "not comparable seed " << seed << ": " << v.notComparable
+                << ", past every mode's envelope\n  scene: " << path << std::endl;
+            continue;
+        }
+        ++drawn[mode];
         setAside += v.setAside;
         pixels += v.pixels;
         if (v.agreed) {
-            ++agreed[r.precision];
+            ++agreed[mode];
             fs::remove(path);
+            for (const SideFile& file : r.files)
+                if (file.name.starts_with("seed-")) fs::remove(dir / file.name);
             continue;
         }
         if (!v.refusal.empty()) {
@@ -153,24 +179,22 @@ int runDifftest(const Options& o, std::ostream& out, std::ostream& err) {
             continue;
         }
         ++disagreed;
-        out << "DISAGREE seed " << seed << " (" << precisionName(r.precision) << "): " << v.figures
+        out << "DISAGREE seed " << seed << " (" << mode << "): " << v.figures
             << "\n  " << commandFor(path, r) << std::endl;
     }
     const double seconds = stopwatch.seconds();
     out << "difftest: " << o.difftestScenes << " scenes (seeds " << std::uint64_t(o.seed) << " to "
         << std::uint64_t(o.seed) + std::uint64_t(std::max(o.difftestScenes, 1) - 1) << ") in "
         << int(seconds + 0.5) << " s:";
-    for (const auto& [mode, n] : drawn) {
-        out << " " << precisionName(mode) << " " << agreed[mode] << " of " << n << " agreed;";
-    }
-    out << " " << refused << " refused by the GPU with an error\n";
+    for (const auto& [mode, n] : drawn) out << " " << mode << " " << agreed[mode] << " of " << n << " agreed;";
+    out << " " << notComparable << " not comparable; " << refused << " refused with an error\n";
     char share[120];
     std::snprintf(share, sizeof share, "%.4g %%",
                   pixels ? 100.0 * double(setAside) / double(pixels) : 0.0);
     out << "difftest: " << setAside << " of " << pixels << " pixels set aside (" << share
         << "): within a decision's margin of the mode's error bound\n";
-    out << "difftest: " << o.difftestScenes - disagreed - refused << " passed, " << disagreed
-        << " failed\n";
+    out << "difftest: " << o.difftestScenes - disagreed - refused - notComparable << " passed, "
+        << disagreed << " failed\n";
     (void)err;
     return disagreed > 0 ? 2 : 0;
 }

@@ -6,6 +6,8 @@
 #include <glm/trigonometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "image/image_io.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -118,7 +120,7 @@ struct Placed {
     std::string body;      // the shape word(s), or the boolean's lines
     std::string material;  // every material word but transparency, speedOfLight and the texture
     double speedOfLight = 1;
-    int texture = 0;  // 0 none, 1 checkerboard, 2 wood
+    int texture = 0;  // 0 none, 1 checkerboard, 2 wood, 3 pixmap 0
     double cell = 1;  // the texture's cell size or ring width
     dvec3 odd{0.0};   // its odd cells' or rings' colour
 
@@ -168,11 +170,15 @@ struct Placed {
             material + " transparency " + num(transparency) + " speedOfLight " + num(speedOfLight);
         if (texture == 0) {
             t += " texture 0\n";
+        } else if (texture == 3) {
+            t += " texture 3 parameters 1 0\n";
         } else {
             t += " texture " + std::to_string(texture) + " parameters 4 " + num(cell) + " " +
                  triple(odd) + "\n";
         }
-        if (plane) return t + "push translate " + triple(at) + " rotate -90 1 0 0 plane pop\n";
+        if (plane)
+            return t + "push translate " + triple(at) + " rotate " + num(rotation.degrees) + " " +
+                   triple(rotation.axis) + " plane pop\n";
         t += "push translate " + triple(at, precise) + " rotate " + num(rotation.degrees) + " " +
              triple(rotation.axis) + " scale " + triple(scale, precise);
         if (secondRotation) t += " rotate " + num(second.degrees) + " " + triple(second.axis);
@@ -186,7 +192,7 @@ public:
 
     // A material: every word now and then, secondary rays above Hill's
     // thresholds (minReflectivity and minTransparency 0.5) or well below.
-    void material(Placed& p, bool textured) {
+    void material(Placed& p, bool textured, bool pixmap = false) {
         std::string m = "ambient " + triple(d_.vec(0, .3));
         m += " diffuse " + triple(d_.vec(.1, .9));
         if (d_.chance(.5)) {
@@ -200,7 +206,9 @@ public:
         p.transparency = written(d_.chance(.25) ? d_.range(.6, .95) : d_.range(0, .3));
         p.material = m;
         p.speedOfLight = written(d_.range(.5, 1.2));
-        if (textured) {
+        if (textured && pixmap && d_.chance(.35)) {
+            p.texture = 3;
+        } else if (textured) {
             // Checkerboard (1) or wood (2): size or ring width, then the odd colour.
             p.texture = d_.chance(.5) ? 1 : 2;
             p.cell = written(d_.logRange(.25, 2));
@@ -436,11 +444,204 @@ void loneScene(Draw& d, const EnvelopeLimits& env, RandomScene& r) {
             colour(.5, 1) + "\n" + objects;
 }
 
+// The solids a boolean takes on the GPU: every shape but the teapot (an
+// open mesh: GPU CSG takes closed convex meshes only) and the square (no
+// inside), with their inside spans along a ray (a torus and an hourglass
+// two, every other solid one).
+struct Solid {
+    const char* word;
+    int spans;
+};
+const Solid kSolids[] = {{"sphere", 1},
+                         {"cube", 1},
+                         {"cylinder", 1},
+                         {"cone", 1},
+                         {"torus", 2},
+                         {"taperedCylinder -1", 2},
+                         {"taperedCylinder -0.5", 2},
+                         {"taperedCylinder 0", 1},
+                         {"taperedCylinder 2", 1},
+                         {"tetrahedron", 1},
+                         {"octahedron", 1},
+                         {"dodecahedron", 1},
+                         {"icosahedron", 1},
+                         {"buckyball", 1},
+                         {"mesh pyramid.3vn", 1}};
+constexpr int kSolidCount = int(sizeof kSolids / sizeof kSolids[0]);
+
+// A small pixmap: a few texels a side, each its own colour or a two-colour
+// checker, as a PNG file.
+std::string pixmapPng(Draw& d) {
+    Image image;
+    image.width = 2 + d.below(15);
+    image.height = 2 + d.below(15);
+    image.channels = 3;
+    const bool checker = d.chance(.5);
+    const dvec3 a = d.vec(0, 1), b = d.vec(0, 1);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const dvec3 c = checker ? ((x + y) % 2 ? a : b) : d.vec(0, 1);
+            for (int k = 0; k < 3; ++k) image.pixels.push_back(float(c[k]));
+        }
+    return pngBytes(image);
+}
+
+// A boolean operand `depth` levels deep: a solid placed inside its parent, or
+// (while depth lasts) a boolean of two. `spans` is what the tree may still
+// add to a ray's span list (GPU CSG keeps 8 a list): a tree of four solids
+// at most, two spans each, always fits.
+std::string operand(Draw& d, SceneWriter& w, int depth, int& spans, bool first) {
+    std::string t = first ? "  " : "  push translate " + triple(d.vec(-.8, .8)) + " scale " +
+                                       triple(d.vec(.4, 1)) + " ";
+    if (!first && d.chance(.4)) {
+        const Rotation r{written(d.range(-180, 180)), w.axis()};
+        t += "rotate " + num(r.degrees) + " " + triple(r.axis) + " ";
+    }
+    if (d.chance(.2)) t = "diffuse " + triple(d.vec(.1, .9)) + "\n" + t;
+    const char* ops[] = {"union", "intersection", "difference"};
+    if (depth > 0 && spans >= 2 && d.chance(.5)) {
+        t += std::string(ops[d.below(3)]) + "\n";
+        t += operand(d, w, depth - 1, spans, true);
+        t += operand(d, w, depth - 1, spans, false);
+    } else {
+        int pick = d.below(kSolidCount);
+        if (kSolids[pick].spans > spans) pick = 0;  // the sphere
+        spans -= kSolids[pick].spans;
+        if (std::string(kSolids[pick].word).starts_with("mesh")) w.usesMesh = true;
+        t += std::string(kSolids[pick].word) + "\n";
+    }
+    return first ? t : t + "  pop\n";
+}
+
+// A scene past every envelope, for `--precision auto`: up to three planes at
+// any tilt, textured (checkers, wood, a pixmap) and seen to their horizons;
+// booleans of every solid, booleans nested in them; glass of any thickness; squashes
+// to 1e-6 between rotations and 1e-8 before one; eyes up to 2e5 times the
+// scene away, low over a floor, grazing or inside. `vkray difftest` renders
+// it in the mode auto chooses, or reports it not comparable where the scene
+// passes fp64's envelope too (docs/testing.md).
+void openScene(Draw& d, std::uint64_t seed, RandomScene& r) {
+    r.open = true;
+    EnvelopeLimits limits = envelopeOf(Precision::Fp64).scenes;
+    limits.smallestSquash = 1e-6;
+    limits.smallestInnerSquash = 1e-8;
+    SceneWriter w(d, limits);
+    std::string head = "background " + triple(d.vec(0, 1)) + "\n";
+    head += "globalAmbient " + triple(d.vec(0, .4)) + "\n";
+    head += "maxRecursionDepth " + std::to_string(d.chance(.2) ? d.below(9) : d.below(5)) + "\n";
+    const double extent = d.logRange(1, 20);
+    std::vector<Placed> objects;
+    std::vector<dvec3> centres;  // of centred solids that are not squashed
+    double floor = 0;            // the first level plane's height
+    bool level = false;
+    const int planes = d.chance(.5) ? 0 : 1 + d.below(3);
+    for (int i = 0; i < planes; ++i) {
+        Placed p;
+        w.material(p, d.chance(.6), true);
+        p.plane = true;
+        p.at = written(d.vec({-extent, -2 * extent, -extent}, {extent, 0, extent}));
+        if (i == 0 && d.chance(.6)) {
+            p.rotation = {-90, dvec3(1, 0, 0)};
+            level = true;
+            floor = p.at.y;
+        } else {
+            p.rotation = {written(d.range(-180, 180)), w.axis()};
+        }
+        objects.push_back(p);
+    }
+    const int count = d.chance(.3) ? 9 + d.below(16) : 1 + d.below(8);
+    for (int i = 0; i < count; ++i) {
+        const dvec3 at = d.vec(-extent, extent);
+        const double size = extent * d.logRange(.05, .5);
+        Placed p;
+        w.material(p, d.chance(.3), true);
+        w.placement(p, at, size);
+        if (d.chance(.3)) {
+            const char* ops[] = {"union", "intersection", "difference"};
+            int spans = 8;
+            const int depth = d.chance(.35) ? 1 : 0;  // a boolean nested in it, or none
+            p.boolean = true;
+            p.body = std::string(ops[d.below(3)]) + "\n";
+            p.body += operand(d, w, depth, spans, true);
+            p.body += operand(d, w, depth, spans, false);
+        } else {
+            p.body = w.primitive(true);
+            const std::string& s = p.body;
+            const bool centred = s == "sphere" || s == "cube" || s == "torus" ||
+                                 s == "tetrahedron" || s == "octahedron" || s == "dodecahedron" ||
+                                 s == "icosahedron" || s == "buckyball";
+            if (p.squashAxis < 0 && centred) centres.push_back(p.at);
+        }
+        objects.push_back(p);
+    }
+
+    std::string lightLines;
+    const int lights = 1 + d.below(4);
+    for (int i = 0; i < lights; ++i) {
+        lightLines += "light " + triple(d.vec({-3, 0, -3}, {3, 4, 3}) * extent);
+        lightLines += " " + triple(d.vec(.2, 1)) + "\n";
+    }
+
+    dvec3 eye(0.0), look(0.0);
+    double fov = d.range(15, 80);
+    int view = d.below(10);
+    if (view == 8 && !level) view = 0;
+    if (view == 9 && centres.empty()) view = 0;
+    if (view < 5) {
+        const double r0 = extent * d.range(2.5, 6);
+        eye = d.vec({-1, .2, -1}, {1, 1, 1}) * r0;
+        if (std::abs(eye.x) + std::abs(eye.z) < 1e-3) eye.x = r0;
+    } else if (view < 7) {
+        const dvec3 direction = glm::normalize(d.vec({-1, .1, 1}, {1, 1, 1}));
+        const double distance = extent * d.logRange(6, 2e5);
+        eye = direction * distance;
+        fov = glm::degrees(2 * std::atan(extent * d.range(.5, 2.5) / distance));
+    } else if (view < 8) {
+        eye = dvec3(extent * 3, extent * d.range(-.2, .2), extent * 3);
+    } else if (view < 9) {
+        // Low over the floor, looking level: its horizon across the view.
+        eye = dvec3(extent * d.range(-1, 1), floor + extent * d.logRange(1e-3, .5),
+                    extent * d.range(2, 4));
+        look = dvec3(eye.x * .5, eye.y - extent * d.range(0, .3), -extent);
+    } else {
+        eye = centres[size_t(d.below(int(centres.size())))];
+        look = eye + d.vec(-1, 1);
+    }
+    eye = written(eye);
+    fov = written(fov);
+
+    if (glm::length(written(look) - eye) < 1e-6 * extent) look = eye + dvec3(0, 0, -extent);
+    std::string sdl = "camera eye " + triple(eye) + " look " + triple(look) + " up 0 1 0 fov " + num(fov) +
+          "\n" + head;
+    bool pixmap = false;
+    for (const Placed& p : objects) {
+        sdl += p.text();
+        pixmap |= p.texture == 3;
+        r.genericEye.push_back(p.genericEye(eye));
+    }
+    if (pixmap) {  // each seed's own, beside every other seed's scene
+        const std::string name = "seed-" + std::to_string(seed) + "-pixmap.png";
+        r.files.push_back({name, pixmapPng(d)});
+        sdl += "makePixmap 0 " + name + "\n";
+    }
+    r.reach.worldEye = glm::length(eye);
+    r.sdl = sdl + lightLines;
+    if (w.usesMesh) r.files.push_back({"pyramid.3vn", pyramid3vn()});
+    drawSettings(d, r);
+}
+
 }  // namespace
 
 RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
-    Draw d(seed);
     RandomScene r;
+    // Open or for a mode, decided by a draw of its own: the scenes drawn for
+    // a mode are the seeds' scenes from before the open family was drawn.
+    if (!precision && Draw(seed ^ 0x6f70656e5f736565ull).chance(.5)) {
+        Draw d(seed);
+        openScene(d, seed, r);
+        return r;
+    }
+    Draw d(seed);
     // Naive mode is the textbook's float, expected to disagree: drawn only
     // when asked for.
     const Precision modes[] = {Precision::Robust, Precision::Robust, Precision::Fp64};
@@ -480,6 +681,7 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
         if (kind == 0 && i == 0 && !near) {
             p.plane = true;
             p.at = written(dvec3(0, -extent, 0));
+            p.rotation = {-90, dvec3(1, 0, 0)};
             // Untextured: near its horizon a plane's hits lie arbitrarily
             // far, and no mode places them to a cell there (docs/numerics.md,
             // "Envelope").
@@ -619,10 +821,7 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
     }
     r.reach.worldEye = glm::length(eye);
     r.sdl = sdl + lightLines;
-    if (w.usesMesh) {
-        r.meshFile = "pyramid.3vn";
-        r.meshText = pyramid3vn();
-    }
+    if (w.usesMesh) r.files.push_back({"pyramid.3vn", pyramid3vn()});
     drawSettings(d, r);
     return r;
 }

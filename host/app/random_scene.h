@@ -2,10 +2,11 @@
 // tester (`vkray difftest`): every shape (negative and zero tapers,
 // booleans, polyhedra, the teapot, a 3VN mesh), strong and near-singular
 // transforms, cameras far away, grazing, inside objects and close above a
-// huge one, one to several lights, every material word, and the render
-// settings (spp, block, precision). What is drawn covers, and stays inside,
-// the envelope in which the GPU is documented to agree with the CPU
-// reference (docs/numerics.md, "Envelope").
+// huge one, one to several lights, every material word and texture, and the
+// render settings (spp, block, precision). Drawn for a mode, a scene covers
+// and stays inside the envelope in which the mode is documented to agree
+// with the CPU reference (docs/numerics.md, "Envelope"); drawn open, it goes
+// past it, and `--precision auto` chooses.
 #pragma once
 
 #include "gpu/precision.h"
@@ -31,11 +32,18 @@ struct SceneReach {
     double thinPerDistance = 1e300;  // smallest thickness / distance of a refracting solid
 };
 
+// A file a scene names, to be written beside it.
+struct SideFile {
+    std::string name, bytes;
+};
+
 struct RandomScene {
-    bool lone = false;     // a lone object (SceneEnvelope::lone), else several
-    std::string sdl;       // the scene, with a camera
-    std::string meshFile;  // the 3VN file it names ("" when none), to write beside it
-    std::string meshText;
+    bool lone = false;  // a lone object (SceneEnvelope::lone), else several
+    // Drawn past every envelope (openScene), for `--precision auto` to
+    // choose the mode: `precision` is then robust until it has.
+    bool open = false;
+    std::string sdl;              // the scene, with a camera
+    std::vector<SideFile> files;  // the 3VN mesh and the pixmap it names
     int width = 32, height = 24, block = 1, spp = 1;
     std::uint32_t sampleSeed = 0;
     Precision precision = Precision::Robust;
@@ -47,8 +55,12 @@ struct RandomScene {
 };
 
 // The scene of `seed`: the same seed draws the same scene on every machine.
-// `precision`: the mode to draw for; null draws robust or fp64 (naive, the
-// textbook's float, is expected to disagree and is drawn only when asked).
+// `precision`: the mode to draw for, inside its envelope; null draws half
+// the seeds open (past every envelope, for auto to choose from: several and
+// tilted planes, textured, pixmaps, nested booleans of every solid, glass
+// of any thickness, squashes and eyes beyond robust's figures) and the rest
+// for robust or fp64 (naive, the textbook's float, is expected to disagree
+// and is drawn only when asked).
 RandomScene randomScene(std::uint64_t seed, const Precision* precision = nullptr);
 
 }  // namespace vkray

@@ -79,6 +79,12 @@ public:
             over(o,
                  "squashed and seen from " + figure(reach) + " of its generic sizes (|M^-1 eye|)",
                  reach, limits_.farthestGeneric, false);
+            // The squash sweeps looked from a few sizes: from farther, the
+            // eye's own figure holds too, in world sizes (its largest scale).
+            const glm::dvec3 where = glm::dvec3(o.worldFromObject * glm::dvec4(centre, 1));
+            const double sizes = glm::length(camera_.eye - where) / (largest * size);
+            over(o, "squashed and seen from " + figure(sizes) + " of its sizes", sizes,
+                 limits_.farthestEye, false);
         } else {
             over(o, "seen from " + figure(reach) + " of its sizes", reach, limits_.farthestEye,
                  false);

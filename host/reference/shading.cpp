@@ -112,7 +112,8 @@ double WhittedShader::boundOf(const Ray& ray, int level) const {
                     perturbation_->secondaryPosition * largestOf(ray.origin - perturbation_->eye));
 }
 
-Ray WhittedShader::moved(const Ray& ray, double bound, int level) const {
+Ray WhittedShader::moved(const Ray& ray, double bound, int level,
+                         const glm::dvec3* surface) const {
     if (!perturbation_->sideways) return ray;
     const glm::dvec3 d = glm::normalize(ray.direction);
     const glm::dvec3 across = std::abs(d.x) > 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
@@ -121,7 +122,14 @@ Ray WhittedShader::moved(const Ray& ray, double bound, int level) const {
     const glm::dvec3 side =
         std::cos(perturbation_->angle) * e1 + std::sin(perturbation_->angle) * e2;
     const double tilt = level == 0 ? perturbation_->primaryTilt : perturbation_->secondaryTilt;
-    return {ray.origin + bound * side, glm::normalize(d + tilt * side)};
+    glm::dvec3 step = side;
+    if (surface && glm::dot(*surface, *surface) > 0) {
+        const glm::dvec3 n = glm::normalize(*surface);
+        const glm::dvec3 along = side - glm::dot(side, n) * n;
+        const double length = glm::length(along);
+        step = length > 1e-6 ? along / length : glm::dvec3(0);
+    }
+    return {ray.origin + bound * step, glm::normalize(d + tilt * side)};
 }
 
 std::optional<WorldHit> WhittedShader::perturbedHit(const Ray& ray, double bound) const {
@@ -159,15 +167,15 @@ glm::dvec3 WhittedShader::leave(const WorldHit& hit, const glm::dvec3& direction
     return hit.point + forward * a + std::max(step - forward * c, 0.0) * n;
 }
 
-glm::dvec3 WhittedShader::lightThrough(const glm::dvec3& origin,
-                                       const glm::dvec3& lightPosition) const {
+glm::dvec3 WhittedShader::lightThrough(const glm::dvec3& origin, const glm::dvec3& lightPosition,
+                                       const glm::dvec3* surface) const {
     const glm::dvec3 toLight = lightPosition - origin;
     double distance = glm::length(toLight);
     if (!(distance > 0)) return glm::dvec3(1);
     Ray feeler{origin, toLight / distance};
     if (perturbation_) {
         const double bound = boundOf(feeler, 1);
-        feeler = moved(feeler, bound, 1);
+        feeler = moved(feeler, bound, 1, surface);
         distance += perturbation_->feelerSide * bound;
     }
     double through = 1;
@@ -205,7 +213,8 @@ glm::dvec3 WhittedShader::localShade(const WorldHit& hit, const Material& materi
             term.mDotS = glm::dot(m, s);
             if (glm::dot(halfway, halfway) > 0) term.mDotH = glm::dot(m, glm::normalize(halfway));
             const glm::dvec3 a =
-                term.mDotS > 0 ? lightThrough(feelerOrigin, light.position) : glm::dvec3(0);
+                term.mDotS > 0 ? lightThrough(feelerOrigin, light.position, &hit.geometricNormal)
+                               : glm::dvec3(0);
             if (term.mDotS > 0) term.feelerMet = a != glm::dvec3(1);
             if (a != glm::dvec3(0)) {
                 term.diffuse = a * light.color * k * material.diffuse * term.mDotS;
@@ -222,13 +231,20 @@ glm::dvec3 WhittedShader::localShade(const WorldHit& hit, const Material& materi
 
 glm::dvec3 WhittedShader::radiance(const Ray& given, int level, const Medium& medium,
                                    std::optional<WorldHit>* firstHit, PixelTrace* trace) const {
+    return radianceLeaving(given, level, medium, nullptr, firstHit, trace);
+}
+
+glm::dvec3 WhittedShader::radianceLeaving(const Ray& given, int level, const Medium& medium,
+                                          const glm::dvec3* leftNormal,
+                                          std::optional<WorldHit>* firstHit,
+                                          PixelTrace* trace) const {
     // Primary rays start at the eye and secondary rays off the surface
     // (offsetRayOrigin), so t > 0 needs no epsilon.
     Ray ray = given;
     std::optional<WorldHit> hit;
     if (perturbation_) {
         const double bound = boundOf(given, level);
-        ray = moved(given, bound, level);
+        ray = moved(given, bound, level, leftNormal);
         hit = perturbedHit(ray, bound);
     } else {
         hit = intersector_.closestHit(ray, 0.0);
@@ -264,7 +280,8 @@ glm::dvec3 WhittedShader::radiance(const Ray& given, int level, const Medium& me
     if (material.reflectivity > scene_.minReflectivity) {
         const glm::dvec3 r = reflectDirection(d, m);
         const Ray reflected{leave(*hit, r), r};
-        color += material.reflectivity * radiance(reflected, level + 1, medium);
+        color += material.reflectivity * radianceLeaving(reflected, level + 1, medium,
+                                                         &hit->geometricNormal, nullptr, nullptr);
     }
     if (material.transparency > scene_.minTransparency) {
         // Entering pushes the object's medium, leaving pops it; on total
@@ -273,7 +290,9 @@ glm::dvec3 WhittedShader::radiance(const Ray& given, int level, const Medium& me
         const std::optional<glm::dvec3> t = refractDirection(d, m, beyond.speed() / medium.speed());
         const glm::dvec3 direction = t ? *t : reflectDirection(d, m);
         const Ray transmitted{leave(*hit, direction), direction};
-        color += material.transparency * radiance(transmitted, level + 1, t ? beyond : medium);
+        color += material.transparency * radianceLeaving(transmitted, level + 1,
+                                                         t ? beyond : medium,
+                                                         &hit->geometricNormal, nullptr, nullptr);
     }
     return color;
 }

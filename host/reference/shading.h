@@ -108,7 +108,10 @@ public:
     // transparencies of the objects the feeler meets before the light, each
     // object once (a boolean is one object, with the transparency of the
     // operand met first); 0 from the first opaque one.
-    glm::dvec3 lightThrough(const glm::dvec3& origin, const glm::dvec3& lightPosition) const;
+    // `surface`: the normal of the surface the feeler leaves (its origin's
+    // moves stay along that surface), or null.
+    glm::dvec3 lightThrough(const glm::dvec3& origin, const glm::dvec3& lightPosition,
+                            const glm::dvec3* surface = nullptr) const;
 
 private:
     glm::dvec3 localShade(const WorldHit& hit, const Material& material, const glm::dvec3& v,
@@ -116,7 +119,16 @@ private:
     // The perturbed parts (perturbation_ set).
     double reachAlong(const Ray& ray) const;
     double boundOf(const Ray& ray, int level) const;
-    Ray moved(const Ray& ray, double reach, int level) const;
+    // Moved to a side of the ray by `reach` (and tilted): for a ray that
+    // leaves a surface of normal `surface`, along that surface only. A hit
+    // point is rounded along its surface; across it, the GPU's offset
+    // (offsetOrigin) covers the rounding by design, and a move across would
+    // start the ray inside the surface it leaves, which the GPU's never
+    // does.
+    Ray moved(const Ray& ray, double reach, int level, const glm::dvec3* surface = nullptr) const;
+    glm::dvec3 radianceLeaving(const Ray& ray, int level, const Medium& medium,
+                               const glm::dvec3* leftNormal, std::optional<WorldHit>* firstHit,
+                               PixelTrace* trace) const;
     std::optional<WorldHit> perturbedHit(const Ray& ray, double bound) const;
     glm::dvec3 leave(const WorldHit& hit, const glm::dvec3& direction) const;
 

@@ -3,6 +3,7 @@
 // language and every render setting.
 #include "app/random_scene.h"
 
+#include "numerics/envelope.h"
 #include "reference/shading.h"
 #include "scene/scene_geometry.h"
 #include "support/temp_folder.h"
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <string>
 
@@ -72,7 +74,7 @@ TEST(RandomScene, EverySceneLoadsAndTogetherTheyCoverTheLanguage) {
         const RandomScene r = randomScene(seed);
         const fs::path path = dir / "scene.sdl";
         std::ofstream(path) << r.sdl;
-        if (!r.meshFile.empty()) std::ofstream(dir / r.meshFile) << r.meshText;
+        for (const SideFile& file : r.files) std::ofstream(dir / file.name, std::ios::binary) << file.bytes;
         Scene scene;
         ASSERT_NO_THROW(scene = loadScene(path.string(), {}, nullptr)) << "seed " << seed << ":\n"
                                                                        << r.sdl;
@@ -202,6 +204,76 @@ TEST(RandomScene, APlaneIsNeverTextured) {
         }
     }
     EXPECT_GT(planes, 30);
+}
+
+// Open scenes (half the seeds drawn for no mode) go where the scenes drawn
+// for a mode do not: several planes, tilted and textured (a pixmap too),
+// booleans nested in booleans with tori, hourglasses and the mesh among
+// their solids, squashes past robust's figures, floors seen to their
+// horizon; and `--precision auto` has something to choose: some are inside
+// robust's envelope, some need fp64, some pass fp64's too.
+TEST(RandomScene, OpenScenesGoPastTheEnvelopesAndAutoChooses) {
+    const test::TempFolder scratch("vkray-random-scene-open");
+    const fs::path& dir = scratch.path();
+    int open = 0, severalPlanes = 0, tilted = 0, texturedPlanes = 0, pixmaps = 0, nested = 0,
+        squashedPast = 0, horizon = 0;
+    std::map<std::string, int> chosen;
+    std::set<std::string> operands;
+    for (std::uint64_t seed = 0; seed < 300; ++seed) {
+        const RandomScene r = randomScene(seed);
+        if (!r.open) continue;
+        ++open;
+        const fs::path path = dir / "scene.sdl";
+        std::ofstream(path) << r.sdl;
+        for (const SideFile& file : r.files)
+            std::ofstream(dir / file.name, std::ios::binary) << file.bytes;
+        Scene scene;
+        ASSERT_NO_THROW(scene = loadScene(path.string(), {}, nullptr)) << "seed " << seed << ":\n"
+                                                                       << r.sdl;
+        ASSERT_EQ(r.genericEye.size(), scene.objects.size()) << seed;
+        int planes = 0;
+        for (const SceneObject& o : scene.objects) {
+            if (o.type == ShapeType::Plane) {
+                ++planes;
+                texturedPlanes += o.material.texture != 0;
+                const glm::dvec3 normal = glm::normalize(glm::dvec3(
+                    glm::transpose(glm::dmat3(o.objectFromWorld)) * glm::dvec3(0, 0, 1)));
+                tilted += std::abs(normal.y) < 0.999;
+            }
+            pixmaps += o.material.texture == 3;
+            // M's columns' lengths: its scales, whatever the rotations.
+            const glm::dmat3 m(o.worldFromObject);
+            const double a = glm::length(m[0]), b = glm::length(m[1]), c = glm::length(m[2]);
+            const double squash = std::min({a, b, c}) / std::max({a, b, c});
+            squashedPast += squash < envelopeOf(Precision::Robust).scenes.smallestSquash;
+        }
+        severalPlanes += planes > 1;
+        for (std::size_t at = r.sdl.find("\n  push"); at != std::string::npos;
+             at = r.sdl.find("\n  push", at + 1)) {
+            const std::string line = r.sdl.substr(at + 1, r.sdl.find('\n', at + 1) - at - 1);
+            for (const char* op : {" union", " intersection", " difference"})
+                nested += line.ends_with(op);
+            for (const char* solid : {" torus", " taperedCylinder -1", " mesh pyramid.3vn"})
+                if (line.ends_with(solid)) operands.insert(solid);
+        }
+        const Camera camera = *scene.camera;
+        const CameraBasis basis = makeCameraBasis(camera, r.width, r.height);
+        const PrecisionChoice choice = choosePrecision(scene, basis);
+        for (const EnvelopeExcess& e : choice.outside)
+            horizon += e.what.ends_with("a textured plane with its horizon in view");
+        ++chosen[!choice.beyondEvery.empty() ? "not comparable" : precisionName(choice.precision)];
+    }
+    EXPECT_GT(open, 100);
+    EXPECT_GT(severalPlanes, 5);
+    EXPECT_GT(tilted, 10);
+    EXPECT_GT(texturedPlanes, 10);
+    EXPECT_GT(pixmaps, 5);
+    EXPECT_GT(nested, 10);
+    EXPECT_GT(squashedPast, 5);
+    EXPECT_GT(horizon, 5);
+    EXPECT_EQ(operands.size(), 3u);
+    for (const char* mode : {"robust", "fp64", "not comparable"})
+        EXPECT_GT(chosen[mode], 10) << mode;
 }
 
 // fp64 goes further than robust on every figure.

@@ -68,6 +68,22 @@ TEST(Envelope, SquashesAreTheSmallestOverTheLargestScale) {
     EXPECT_EQ(out[0].limit, 2e-3);
 }
 
+// A lone cube squashed to 0.15 (far inside robust's lone 1e-4) seen from
+// 3e4 of its sizes (its largest scale 1): |M^-1 eye| is inside the lone
+// 7e8, but the squash sweeps looked from a few sizes, and 3e4 sizes pass
+// the lone 1.6e4 (difftest seed 7300263 drew such a cube 5.2e5 sizes away,
+// and auto ran robust there: 3 pixels unexplained).
+TEST(Envelope, ASquashedObjectFarAwayIsHeldToTheEyesFigureToo) {
+    const Seen s = seen("camera eye 30000 0 0 look 0 0 0 fov 0.01\n"
+                        "push rotate 30 0 1 0 scale 1 0.15 0.5 cube pop\n");
+    const std::vector<EnvelopeExcess> out = robust(s);
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_EQ(out[0].what, "the 'cube' at s.sdl:2:39 is squashed and seen from 3e+04 of its sizes");
+    EXPECT_NEAR(out[0].figure, 3e4, 1);
+    EXPECT_EQ(out[0].limit, 1.6e4);
+    EXPECT_TRUE(envelopeExcesses(s.scene, s.camera, Precision::Fp64).empty());
+}
+
 // A checkered sphere 100 from the eye with cells of 0.01: |M^-1 eye| / cell
 // = 1e4, beyond robust's 2e3, inside fp64's 2e7.
 TEST(Envelope, TexturesCountTheirCellsAcrossTheEyesDistance) {
