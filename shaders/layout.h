@@ -355,10 +355,19 @@ VKRAY_CONST(uint, PRESENT_BINDING_BYTES, 5u);  // readonly float[256]: [b] = the
                                                // a PNG stores as byte b or more (pngByte)
 VKRAY_CONST(uint, PRESENT_BINDING_RANGE, 6u);  // uvec4: x, y = float bits of the least and the
                                                // greatest finite depth of the pass (atomics)
+VKRAY_CONST(uint, PRESENT_BINDING_VERDICTS, 7u);  // readonly uint[] a pixel: the margin rule's
+                                                  // verdict (VERDICT_*)
 VKRAY_CONST(uint, PRESENT_WORKGROUP, 8u);      // present.comp's local size, square
 
 VKRAY_CONST(uint, PRESENT_ABSORB, 0u);   // a tile into the sums (and the AOVs)
 VKRAY_CONST(uint, PRESENT_COMPOSE, 1u);  // the view of the whole image
+
+// The difference view's verdicts: none yet (the threshold's heat alone), the
+// same, set aside (blue, as `render --diff` draws it), unexplained (heat).
+VKRAY_CONST(uint, VERDICT_NONE, 0u);
+VKRAY_CONST(uint, VERDICT_SAME, 1u);
+VKRAY_CONST(uint, VERDICT_SET_ASIDE, 2u);
+VKRAY_CONST(uint, VERDICT_UNEXPLAINED, 3u);
 
 VKRAY_CONST(uint, VIEW_COLOR, 0u);
 VKRAY_CONST(uint, VIEW_DEPTH, 1u);       // false colour, even in 1 / depth over range.xy

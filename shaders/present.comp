@@ -16,6 +16,7 @@ layout(std430, set = 0, binding = PRESENT_BINDING_CPU) readonly buffer CpuBlock 
 layout(std430, set = 0, binding = PRESENT_BINDING_VIEW) writeonly buffer ViewBlock { uint view[]; };
 layout(std430, set = 0, binding = PRESENT_BINDING_BYTES) readonly buffer ByteBlock { float byteFrom[256]; };
 layout(std430, set = 0, binding = PRESENT_BINDING_RANGE) buffer RangeBlock { uvec4 depthRange; };
+layout(std430, set = 0, binding = PRESENT_BINDING_VERDICTS) readonly buffer VerdictBlock { uint verdicts[]; };
 layout(push_constant) uniform ParamBlock { PresentParams params; };
 
 // The byte a PNG stores for v: the largest b with byteFrom[b] <= v (0 for NaN).
@@ -99,7 +100,17 @@ void compose(uvec2 pixel) {
     case VIEW_DEPTH: shown = depthColor(normal.w, params.range.x, params.range.y); break;
     case VIEW_NORMAL: shown = id < 0 ? vec3(0.0) : 0.5 + 0.5 * normal.xyz; break;
     case VIEW_OBJECT_ID: shown = idColor(id); break;
-    case VIEW_DIFFERENCE: shown = heat(sums[i].rgb / sums[i].w, cpu[i].color.rgb, params.range.z); break;
+    case VIEW_DIFFERENCE:
+        // Once the margin rule has judged the picture: set-aside pixels blue,
+        // unexplained ones red at least (an id, depth or normal may be what
+        // differs), the rest by their colour's error.
+        if (verdicts[i] == VERDICT_SET_ASIDE) {
+            shown = vec3(0.2, 0.4, 1.0);
+        } else {
+            shown = heat(sums[i].rgb / sums[i].w, cpu[i].color.rgb, params.range.z);
+            if (verdicts[i] == VERDICT_UNEXPLAINED && shown.r < 1.0) shown = vec3(1.0, 0.0, 0.0);
+        }
+        break;
     default: shown = color; break;
     }
     view[i] = packBytes(shown);

@@ -255,6 +255,7 @@ private:
         failed_ = false;
         cpuValid_ = false;
         difference_.reset();
+        presenter_.setVerdicts({});
         cpu_.stop();
         if (wantsCpu()) startCpu();
     }
@@ -455,6 +456,7 @@ private:
             const CompareResult result =
                 compareImages(picture, cpuColor_, {settings_.threshold, kCheckFailPercent});
             difference_ = result.pixelsOverThreshold;
+            presenter_.setVerdicts({});
             out_ << "difference: " << result.pixelsOverThreshold << " of " << result.pixelCount
                  << " pixels with error > " << settings_.threshold
                  << " (the GPU's progression is not complete)" << std::endl;
@@ -471,6 +473,13 @@ private:
         const Agreement a = judgeAgreement(*scene_, makeCameraBasis(camera_, o_.width, o_.height),
                                            settings, precision_, gpu, cpuFrame_, rule);
         difference_ = a.colors;
+        std::vector<gpu::ShownVerdict> verdicts(a.pixels);
+        for (std::size_t i = 0; i < a.pixels; ++i)
+            verdicts[i] = a.verdicts[i] == PixelVerdict::SetAside ? gpu::ShownVerdict::SetAside
+                          : a.verdicts[i] == PixelVerdict::Unexplained
+                              ? gpu::ShownVerdict::Unexplained
+                              : gpu::ShownVerdict::Same;
+        presenter_.setVerdicts(verdicts);
         out_ << "difference: " << a.colors << " of " << a.pixels << " pixels with error > "
              << settings_.threshold << "; " << a.setAside << " set aside, " << a.unexplained
              << " unexplained (the margin rule, " << precisionName(precision_) << ")" << std::endl;

@@ -76,7 +76,7 @@ struct Presenter::Impl {
     vk::Extent2D extent;
     bool recreate = false;
 
-    HostBuffer sums, aovs, cpu, view, bytes, range;
+    HostBuffer sums, aovs, cpu, view, bytes, range, verdicts;
     std::optional<ComputePipeline> compose;
     std::optional<DescriptorSet> descriptors;
     vk::raii::CommandBuffer commands = nullptr;
@@ -97,7 +97,8 @@ struct Presenter::Impl {
           view(c, sizeof(uint) * pixels,
                vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc),
           bytes(c, sizeof(float) * 256, vk::BufferUsageFlagBits::eStorageBuffer),
-          range(c, sizeof(uvec4), vk::BufferUsageFlagBits::eStorageBuffer) {}
+          range(c, sizeof(uvec4), vk::BufferUsageFlagBits::eStorageBuffer),
+          verdicts(c, sizeof(uint) * pixels, vk::BufferUsageFlagBits::eStorageBuffer) {}
 
     void bindTile(vk::Buffer tile) {
         const vk::DescriptorBufferInfo info(tile, 0, VK_WHOLE_SIZE);
@@ -234,15 +235,17 @@ Presenter::Presenter(Context& context, const std::string& shaderDirectory,
     s.bytes.upload(thresholds.data(), sizeof(float) * 256);
     const uvec4 noRange{0x7f800000u, 0, 0, 0};
     s.range.upload(&noRange, sizeof noRange);
+    const std::vector<uint> noVerdicts(s.pixels, VERDICT_NONE);
+    s.verdicts.upload(noVerdicts.data(), sizeof(uint) * s.pixels);
 
     std::vector<ComputeBinding> bindings;
-    for (uint b = PRESENT_BINDING_TILE; b <= PRESENT_BINDING_RANGE; ++b)
+    for (uint b = PRESENT_BINDING_TILE; b <= PRESENT_BINDING_VERDICTS; ++b)
         bindings.push_back({b, vk::DescriptorType::eStorageBuffer});
     const CompiledShader shader = loadOrCompile({shaderDirectory, "present.comp", {}});
     s.compose.emplace(c, shader.spirv, std::move(bindings), uint(sizeof(PresentParams)));
     s.descriptors.emplace(c, *s.compose);
-    const std::array<const HostBuffer*, 7> buffers{&s.aovs, &s.sums,  &s.aovs, &s.cpu,
-                                                   &s.view, &s.bytes, &s.range};
+    const std::array<const HostBuffer*, 8> buffers{&s.aovs, &s.sums,  &s.aovs,  &s.cpu,
+                                                   &s.view, &s.bytes, &s.range, &s.verdicts};
     std::vector<vk::DescriptorBufferInfo> infos;
     for (const HostBuffer* buffer : buffers) infos.emplace_back(buffer->buffer(), 0, VK_WHOLE_SIZE);
     std::vector<vk::WriteDescriptorSet> writes;
@@ -299,6 +302,22 @@ void Presenter::setCpuReference(const Frame& frame) {
     std::vector<GpuPixel> packed(s.pixels);
     for (size_t i = 0; i < s.pixels; ++i) packed[i] = toGpuPixel(frame, i);
     s.cpu.upload(packed.data(), sizeof(GpuPixel) * s.pixels);
+}
+
+static_assert(std::uint32_t(ShownVerdict::None) == VERDICT_NONE &&
+              std::uint32_t(ShownVerdict::Same) == VERDICT_SAME &&
+              std::uint32_t(ShownVerdict::SetAside) == VERDICT_SET_ASIDE &&
+              std::uint32_t(ShownVerdict::Unexplained) == VERDICT_UNEXPLAINED);
+
+void Presenter::setVerdicts(const std::vector<ShownVerdict>& verdicts) {
+    Impl& s = *impl_;
+    if (verdicts.empty()) {
+        const std::vector<uint> none(s.pixels, VERDICT_NONE);
+        s.verdicts.upload(none.data(), sizeof(uint) * s.pixels);
+        return;
+    }
+    if (verdicts.size() != s.pixels) throw Error("internal: the verdicts are not the window's size");
+    s.verdicts.upload(verdicts.data(), sizeof(uint) * s.pixels);
 }
 
 void Presenter::show(const ViewSettings& settings) try {

@@ -16,6 +16,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace vkray::gpu {
 
@@ -25,6 +26,9 @@ namespace vkray::gpu {
 using SurfaceMaker = std::function<std::uint64_t(void* instance)>;
 
 enum class View { Color, Depth, Normal, ObjectId, Difference };
+
+// A pixel's verdict in the difference view (shaders/layout.h, VERDICT_*).
+enum class ShownVerdict : std::uint32_t { None = 0, Same = 1, SetAside = 2, Unexplained = 3 };
 
 struct ViewSettings {
     View view = View::Color;
@@ -53,6 +57,9 @@ public:
     void absorb(const TracedTile& tile);
 
     void setCpuReference(const Frame& frame);
+    // The margin rule's verdict of each pixel, for the difference view;
+    // empty: none (the threshold's heat alone).
+    void setVerdicts(const std::vector<ShownVerdict>& verdicts);
 
     // Composes the view and presents it. The window is left as it was when
     // it cannot show it now (minimised); the view is composed regardless.

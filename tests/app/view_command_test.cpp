@@ -388,17 +388,24 @@ TEST_F(View, DifferenceCountsThePixelsCheckCounts) {
     EXPECT_EQ(viewCount, checkCount);
     EXPECT_GT(viewCount, 0) << "the threshold is to make some pixels differ";
     EXPECT_NE(line.find("(the margin rule, robust)"), std::string::npos) << shown.output;
-    // The heat map: red to yellow where the error is over the threshold, grey where not.
+    // The heat map, by the margin rule's verdicts: set-aside pixels blue (as
+    // `render --diff` draws them), unexplained ones red to yellow by their
+    // error, grey where the colours agree.
     const Image heat = readImage(path("diff.png"));
-    int hot = 0;
+    long hot = 0, blue = 0;
     for (size_t i = 0; i < heat.pixels.size(); i += 3) {
-        const bool red = heat.pixels[i] == 1.0f && heat.pixels[i + 2] == 0.0f;
-        const bool grey =
-            heat.pixels[i] == heat.pixels[i + 1] && heat.pixels[i + 1] == heat.pixels[i + 2];
-        EXPECT_TRUE(red || grey) << "pixel " << i / 3;
+        const float r = heat.pixels[i], g = heat.pixels[i + 1], b = heat.pixels[i + 2];
+        const bool red = r == 1.0f && b == 0.0f;
+        const bool setAside = r == 0.2f && g == 0.4f && b == 1.0f;
+        const bool grey = r == g && g == b;
+        EXPECT_TRUE(red || setAside || grey) << "pixel " << i / 3;
         hot += red && !grey;
+        blue += setAside;
     }
-    EXPECT_EQ(hot, viewCount);
+    EXPECT_EQ(hot + blue, viewCount);
+    EXPECT_EQ(hot, numberAfter(line, " set aside, "));
+    EXPECT_EQ(blue, numberAfter(line, "; "));
+    EXPECT_GT(blue, 0) << line;  // float against double at 1e-7: within the bound
 }
 
 TEST_F(View, AovViewsShowTheRendersAovs) {

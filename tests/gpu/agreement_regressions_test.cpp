@@ -240,6 +240,15 @@ TEST(AgreementRegressions, FloorsToTheirHorizonDifferOnlyWhereTheMarginRuleExpla
     }
 }
 
+// A pixmap's row border on a face seen through glass: the plays must not
+// start feelers inside the face they leave (the file's header says how).
+TEST(AgreementRegressions, ATexelBorderOnAFaceSeenThroughGlassIsExplained) {
+    for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
+        SCOPED_TRACE(precisionName(precision));
+        EXPECT_EQ(unexplainedPixels("texel_border_through_glass.sdl", {160, 120}, precision), 0u);
+    }
+}
+
 // Two samples a pixel, each a primary ray and a shadow feeler, within 1000
 // counted loop turns a ray in both modes: each tile in one dispatch.
 void expectWalksWithin1000Turns(const Scene& scene) {
