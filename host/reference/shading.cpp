@@ -147,8 +147,9 @@ std::optional<WorldHit> WhittedShader::perturbedHit(const Ray& ray, double bound
     return chosen;
 }
 
-glm::dvec3 WhittedShader::leave(const WorldHit& hit, const glm::dvec3& direction) const {
-    const glm::dvec3 origin = offsetRayOrigin(hit.point, hit.geometricNormal, direction);
+glm::dvec3 WhittedShader::leave(const WorldHit& hit, const glm::dvec3& direction,
+                                 const glm::dvec3& side) const {
+    const glm::dvec3 origin = offsetRayOrigin(hit.point, hit.geometricNormal, side);
     if (!perturbation_) return origin;
     // The GPU's step (shaders/precision.glsl, offsetOrigin): the bound of the
     // point's distance from the eye or the object's scale, taken along the
@@ -160,7 +161,7 @@ glm::dvec3 WhittedShader::leave(const WorldHit& hit, const glm::dvec3& direction
         perturbation_->absolute;
     if (step <= glm::length(origin - hit.point)) return origin;
     const glm::dvec3 n =
-        glm::dot(hit.geometricNormal, direction) < 0 ? -hit.geometricNormal : hit.geometricNormal;
+        glm::dot(hit.geometricNormal, side) < 0 ? -hit.geometricNormal : hit.geometricNormal;
     const glm::dvec3 a = glm::normalize(direction);
     const double c = glm::dot(n, a);
     const double forward = c > 0 ? std::min(step / c, 8 * step) : 0.0;
@@ -212,8 +213,12 @@ glm::dvec3 WhittedShader::localShade(const WorldHit& hit, const Material& materi
             const glm::dvec3 halfway = s + v;
             term.mDotS = glm::dot(m, s);
             if (glm::dot(halfway, halfway) > 0) term.mDotH = glm::dot(m, glm::normalize(halfway));
+            // Played, each feeler leaves as the GPU's does (feelerToward):
+            // its offset's step taken along the feeler itself, which near an
+            // edge can carry it out through the next face.
             const glm::dvec3 a =
-                term.mDotS > 0 ? lightThrough(feelerOrigin, light.position, &hit.geometricNormal)
+                term.mDotS > 0 ? lightThrough(perturbation_ ? leave(hit, s, m) : feelerOrigin,
+                                              light.position, &hit.geometricNormal)
                                : glm::dvec3(0);
             if (term.mDotS > 0) term.feelerMet = a != glm::dvec3(1);
             if (a != glm::dvec3(0)) {

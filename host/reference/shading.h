@@ -130,7 +130,13 @@ private:
                                const glm::dvec3* leftNormal, std::optional<WorldHit>* firstHit,
                                PixelTrace* trace) const;
     std::optional<WorldHit> perturbedHit(const Ray& ray, double bound) const;
-    glm::dvec3 leave(const WorldHit& hit, const glm::dvec3& direction) const;
+    // Where a ray along `direction` leaves the hit, on `side`'s side of the
+    // surface (a feeler: the shading normal's; else its own direction's).
+    glm::dvec3 leave(const WorldHit& hit, const glm::dvec3& direction,
+                     const glm::dvec3& side) const;
+    glm::dvec3 leave(const WorldHit& hit, const glm::dvec3& direction) const {
+        return leave(hit, direction, direction);
+    }
 
     const Scene& scene_;
     const SceneIntersector& intersector_;

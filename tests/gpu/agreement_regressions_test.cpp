@@ -249,6 +249,14 @@ TEST(AgreementRegressions, ATexelBorderOnAFaceSeenThroughGlassIsExplained) {
     }
 }
 
+// A refracted ray that meets a glass cube again at an edge: the plays'
+// feelers must leave as the GPU's do (the file's header says how).
+TEST(AgreementRegressions, AFeelerFromAnEdgeInsideGlassIsExplained) {
+    EXPECT_EQ(unexplainedPixels("refracted_to_an_edge.sdl", {40, 30, 1, 4, 32334305u},
+                                Precision::Robust),
+              0u);
+}
+
 // Two samples a pixel, each a primary ray and a shadow feeler, within 1000
 // counted loop turns a ray in both modes: each tile in one dispatch.
 void expectWalksWithin1000Turns(const Scene& scene) {
