@@ -35,6 +35,9 @@ MarginTracer::MarginTracer(const Scene& scene, const CameraBasis& camera,
     base.secondaryPosition = bound.secondaryPosition;
     base.texture = bound.texture;
     base.absolute = bound.absolute;
+    RayPerturbation offsets = base;
+    offsets.sideways = false;
+    plays_->perturbations.push_back(offsets);
     for (int side = 0; side < 8; ++side) {
         RayPerturbation p = base;
         p.angle = side * std::acos(-1.0) / 4;

@@ -41,9 +41,11 @@ struct PixelSpan {
     std::vector<FirstHit> firstHits;  // sample 0's, one a play, the reference's own first
 };
 
-// The number of plays: the reference itself, eight sides of the bound, and
-// the runner-up winning every tie within it.
-inline constexpr int kMarginPlays = 10;
+// The number of plays: the reference itself; its rays unmoved but leaving
+// surfaces as the GPU's do (the GPU's own geometry, its offset's step
+// along each new ray); eight sides of the bound; and the runner-up winning
+// every tie within it.
+inline constexpr int kMarginPlays = 11;
 
 class MarginTracer {
 public:

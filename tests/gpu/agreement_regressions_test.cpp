@@ -257,6 +257,14 @@ TEST(AgreementRegressions, AFeelerFromAnEdgeInsideGlassIsExplained) {
               0u);
 }
 
+// A reflected ray that the GPU's offset carries past a plane crossing the
+// floor: the GPU's own geometry must be one of the plays.
+TEST(AgreementRegressions, AReflectionStartedPastACrossingPlaneIsExplained) {
+    EXPECT_EQ(unexplainedPixels("reflected_past_a_crossing_plane.sdl", {32, 24, 1, 16, 3887158881u},
+                                Precision::Robust),
+              0u);
+}
+
 // Two samples a pixel, each a primary ray and a shadow feeler, within 1000
 // counted loop turns a ray in both modes: each tile in one dispatch.
 void expectWalksWithin1000Turns(const Scene& scene) {
