@@ -152,7 +152,8 @@ int runDifftest(const Options& o, std::ostream& out, std::ostream& err) {
         const RandomScene r = randomScene(seed, only);
         const std::string path = (dir / ("seed-" + std::to_string(seed) + ".sdl")).string();
         writeFileAtomically(path, r.sdl);
-        for (const SideFile& file : r.files) writeFileAtomically((dir / file.name).string(), file.bytes);
+        for (const SideFile& file : r.files)
+            writeFileAtomically((dir / file.name).string(), file.bytes);
         const Verdict v = judge(path, r, tracers, o);
         const std::string mode = r.open ? std::string("auto (") + precisionName(v.precision) + ")"
                                         : std::string(precisionName(v.precision));
@@ -179,14 +180,15 @@ int runDifftest(const Options& o, std::ostream& out, std::ostream& err) {
             continue;
         }
         ++disagreed;
-        out << "DISAGREE seed " << seed << " (" << mode << "): " << v.figures
-            << "\n  " << commandFor(path, r) << std::endl;
+        out << "DISAGREE seed " << seed << " (" << mode << "): " << v.figures << "\n  "
+            << commandFor(path, r) << std::endl;
     }
     const double seconds = stopwatch.seconds();
     out << "difftest: " << o.difftestScenes << " scenes (seeds " << std::uint64_t(o.seed) << " to "
         << std::uint64_t(o.seed) + std::uint64_t(std::max(o.difftestScenes, 1) - 1) << ") in "
         << int(seconds + 0.5) << " s:";
-    for (const auto& [mode, n] : drawn) out << " " << mode << " " << agreed[mode] << " of " << n << " agreed;";
+    for (const auto& [mode, n] : drawn)
+        out << " " << mode << " " << agreed[mode] << " of " << n << " agreed;";
     out << " " << notComparable << " not comparable; " << refused << " refused with an error\n";
     char share[120];
     std::snprintf(share, sizeof share, "%.4g %%",

@@ -491,8 +491,9 @@ std::string pixmapPng(Draw& d) {
 // add to a ray's span list (GPU CSG keeps 8 a list): a tree of four solids
 // at most, two spans each, always fits.
 std::string operand(Draw& d, SceneWriter& w, int depth, int& spans, bool first) {
-    std::string t = first ? "  " : "  push translate " + triple(d.vec(-.8, .8)) + " scale " +
-                                       triple(d.vec(.4, 1)) + " ";
+    std::string t = first ? "  "
+                          : "  push translate " + triple(d.vec(-.8, .8)) + " scale " +
+                                triple(d.vec(.4, 1)) + " ";
     if (!first && d.chance(.4)) {
         const Rotation r{written(d.range(-180, 180)), w.axis()};
         t += "rotate " + num(r.degrees) + " " + triple(r.axis) + " ";
@@ -611,8 +612,8 @@ void openScene(Draw& d, std::uint64_t seed, RandomScene& r) {
     fov = written(fov);
 
     if (glm::length(written(look) - eye) < 1e-6 * extent) look = eye + dvec3(0, 0, -extent);
-    std::string sdl = "camera eye " + triple(eye) + " look " + triple(look) + " up 0 1 0 fov " + num(fov) +
-          "\n" + head;
+    std::string sdl = "camera eye " + triple(eye) + " look " + triple(look) + " up 0 1 0 fov " +
+                      num(fov) + "\n" + head;
     bool pixmap = false;
     for (const Placed& p : objects) {
         sdl += p.text();

@@ -316,7 +316,8 @@ void Presenter::setVerdicts(const std::vector<ShownVerdict>& verdicts) {
         s.verdicts.upload(none.data(), sizeof(uint) * s.pixels);
         return;
     }
-    if (verdicts.size() != s.pixels) throw Error("internal: the verdicts are not the window's size");
+    if (verdicts.size() != s.pixels)
+        throw Error("internal: the verdicts are not the window's size");
     s.verdicts.upload(verdicts.data(), sizeof(uint) * s.pixels);
 }
 

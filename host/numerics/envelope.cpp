@@ -118,9 +118,9 @@ public:
 private:
     // A textured plane: near its horizon its hits lie arbitrarily far, where
     // float's rounding moves them across cells (fp64 draws on the margin
-    // rule's measure: docs/numerics.md, "Envelope"); without the horizon in view, its farthest visible
-    // hit (a corner ray's: the view meets the plane in a convex patch) per
-    // cell, as for a bounded object.
+    // rule's measure: docs/numerics.md, "Envelope"); without the horizon in view, its farthest
+    // visible hit (a corner ray's: the view meets the plane in a convex patch) per cell, as for a
+    // bounded object.
     void plane(const SceneObject& o) {
         if (!textured(o.material) && o.material.texture != 3) return;
         const glm::dvec3 eye = glm::dvec3(o.objectFromWorld * glm::dvec4(camera_.eye, 1));

@@ -112,8 +112,7 @@ double WhittedShader::boundOf(const Ray& ray, int level) const {
                     perturbation_->secondaryPosition * largestOf(ray.origin - perturbation_->eye));
 }
 
-Ray WhittedShader::moved(const Ray& ray, double bound, int level,
-                         const glm::dvec3* surface) const {
+Ray WhittedShader::moved(const Ray& ray, double bound, int level, const glm::dvec3* surface) const {
     if (!perturbation_->sideways) return ray;
     const glm::dvec3 d = glm::normalize(ray.direction);
     const glm::dvec3 across = std::abs(d.x) > 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
@@ -148,7 +147,7 @@ std::optional<WorldHit> WhittedShader::perturbedHit(const Ray& ray, double bound
 }
 
 glm::dvec3 WhittedShader::leave(const WorldHit& hit, const glm::dvec3& direction,
-                                 const glm::dvec3& side) const {
+                                const glm::dvec3& side) const {
     const glm::dvec3 origin = offsetRayOrigin(hit.point, hit.geometricNormal, side);
     if (!perturbation_) return origin;
     // The GPU's step (shaders/precision.glsl, offsetOrigin): the bound of the
@@ -216,10 +215,10 @@ glm::dvec3 WhittedShader::localShade(const WorldHit& hit, const Material& materi
             // Played, each feeler leaves as the GPU's does (feelerToward):
             // its offset's step taken along the feeler itself, which near an
             // edge can carry it out through the next face.
-            const glm::dvec3 a =
-                term.mDotS > 0 ? lightThrough(perturbation_ ? leave(hit, s, m) : feelerOrigin,
-                                              light.position, &hit.geometricNormal)
-                               : glm::dvec3(0);
+            const glm::dvec3 a = term.mDotS > 0
+                                     ? lightThrough(perturbation_ ? leave(hit, s, m) : feelerOrigin,
+                                                    light.position, &hit.geometricNormal)
+                                     : glm::dvec3(0);
             if (term.mDotS > 0) term.feelerMet = a != glm::dvec3(1);
             if (a != glm::dvec3(0)) {
                 term.diffuse = a * light.color * k * material.diffuse * term.mDotS;
@@ -295,9 +294,9 @@ glm::dvec3 WhittedShader::radianceLeaving(const Ray& given, int level, const Med
         const std::optional<glm::dvec3> t = refractDirection(d, m, beyond.speed() / medium.speed());
         const glm::dvec3 direction = t ? *t : reflectDirection(d, m);
         const Ray transmitted{leave(*hit, direction), direction};
-        color += material.transparency * radianceLeaving(transmitted, level + 1,
-                                                         t ? beyond : medium,
-                                                         &hit->geometricNormal, nullptr, nullptr);
+        color +=
+            material.transparency * radianceLeaving(transmitted, level + 1, t ? beyond : medium,
+                                                    &hit->geometricNormal, nullptr, nullptr);
     }
     return color;
 }

@@ -74,7 +74,8 @@ TEST(RandomScene, EverySceneLoadsAndTogetherTheyCoverTheLanguage) {
         const RandomScene r = randomScene(seed);
         const fs::path path = dir / "scene.sdl";
         std::ofstream(path) << r.sdl;
-        for (const SideFile& file : r.files) std::ofstream(dir / file.name, std::ios::binary) << file.bytes;
+        for (const SideFile& file : r.files)
+            std::ofstream(dir / file.name, std::ios::binary) << file.bytes;
         Scene scene;
         ASSERT_NO_THROW(scene = loadScene(path.string(), {}, nullptr)) << "seed " << seed << ":\n"
                                                                        << r.sdl;

@@ -232,9 +232,9 @@ std::size_t unexplainedPixels(const std::string& name, const RenderSettings& set
 TEST(AgreementRegressions, FloorsToTheirHorizonDifferOnlyWhereTheMarginRuleExplains) {
     for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
         SCOPED_TRACE(precisionName(precision));
-        EXPECT_EQ(unexplainedPixels("textured_plane_horizon.sdl", {32, 24, 1, 1, 3366176552u},
-                                    precision),
-                  0u);
+        EXPECT_EQ(
+            unexplainedPixels("textured_plane_horizon.sdl", {32, 24, 1, 1, 3366176552u}, precision),
+            0u);
         EXPECT_EQ(unexplainedPixels("checkered_floor_horizon.sdl", {160, 120, 1, 4, 0}, precision),
                   0u);
     }
@@ -252,9 +252,9 @@ TEST(AgreementRegressions, ATexelBorderOnAFaceSeenThroughGlassIsExplained) {
 // A refracted ray that meets a glass cube again at an edge: the plays'
 // feelers must leave as the GPU's do (the file's header says how).
 TEST(AgreementRegressions, AFeelerFromAnEdgeInsideGlassIsExplained) {
-    EXPECT_EQ(unexplainedPixels("refracted_to_an_edge.sdl", {40, 30, 1, 4, 32334305u},
-                                Precision::Robust),
-              0u);
+    EXPECT_EQ(
+        unexplainedPixels("refracted_to_an_edge.sdl", {40, 30, 1, 4, 32334305u}, Precision::Robust),
+        0u);
 }
 
 // A reflected ray that the GPU's offset carries past a plane crossing the

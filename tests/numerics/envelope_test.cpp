@@ -74,8 +74,9 @@ TEST(Envelope, SquashesAreTheSmallestOverTheLargestScale) {
 // the lone 1.6e4 (difftest seed 7300263 drew such a cube 5.2e5 sizes away,
 // and auto ran robust there: 3 pixels unexplained).
 TEST(Envelope, ASquashedObjectFarAwayIsHeldToTheEyesFigureToo) {
-    const Seen s = seen("camera eye 30000 0 0 look 0 0 0 fov 0.01\n"
-                        "push rotate 30 0 1 0 scale 1 0.15 0.5 cube pop\n");
+    const Seen s = seen(
+        "camera eye 30000 0 0 look 0 0 0 fov 0.01\n"
+        "push rotate 30 0 1 0 scale 1 0.15 0.5 cube pop\n");
     const std::vector<EnvelopeExcess> out = robust(s);
     ASSERT_EQ(out.size(), 1u);
     EXPECT_EQ(out[0].what, "the 'cube' at s.sdl:2:39 is squashed and seen from 3e+04 of its sizes");
