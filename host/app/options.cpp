@@ -145,9 +145,10 @@ const std::vector<CommandSpec>& commandSpecs() {
              {{"--scenes", ""},
               {"--seed", "the first scene's seed (default 0): the same seeds draw the same scenes"},
               {"--precision",
-               "draw scenes for this mode only (default: robust or fp64, drawn "
-               "by seed; naive, the textbook's float, disagrees by design "
-               "and comes only on request)"},
+               "draw scenes for this mode only, inside its envelope (default: "
+               "half the seeds open, past every envelope, in the mode auto "
+               "chooses, the rest robust or fp64; naive, the textbook's float, "
+               "disagrees by design and comes only on request)"},
               {"--variant",
                "all: render every scene with the all-features shader (faster "
                "for long runs: lavapipe compiles it once; default: each "
