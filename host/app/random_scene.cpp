@@ -265,6 +265,27 @@ private:
     const EnvelopeLimits& env_;
 };
 
+// Whether a view from inside may stand at the shape's generic origin: a
+// point well inside it (or, for the torus, in the hole). That of a
+// cylinder, cone, square or the pyramid lies on its surface: an eye there
+// sees hits at t = 0.
+bool centredSolid(const std::string& shape) {
+    return shape == "sphere" || shape == "cube" || shape == "torus" || shape == "tetrahedron" ||
+           shape == "octahedron" || shape == "dodecahedron" || shape == "icosahedron" ||
+           shape == "buckyball";
+}
+
+// One to four lights around and above a scene of `extent`.
+std::string drawLights(Draw& d, double extent) {
+    std::string lines;
+    const int lights = 1 + d.below(4);
+    for (int i = 0; i < lights; ++i) {
+        lines += "light " + triple(d.vec({-3, 0, -3}, {3, 4, 3}) * extent);
+        lines += " " + triple(d.vec(.2, 1)) + "\n";
+    }
+    return lines;
+}
+
 // The far view's eye: `direction` times the distance at which the farthest
 // object (in object sizes) is `reach` of the envelope's farthestEye away,
 // never nearer than `nearest` nor farther than the CPU reference's limit.
@@ -567,21 +588,12 @@ void openScene(Draw& d, std::uint64_t seed, RandomScene& r) {
             p.body += operand(d, w, depth, spans, false);
         } else {
             p.body = w.primitive(true);
-            const std::string& s = p.body;
-            const bool centred = s == "sphere" || s == "cube" || s == "torus" ||
-                                 s == "tetrahedron" || s == "octahedron" || s == "dodecahedron" ||
-                                 s == "icosahedron" || s == "buckyball";
-            if (p.squashAxis < 0 && centred) centres.push_back(p.at);
+            if (p.squashAxis < 0 && centredSolid(p.body)) centres.push_back(p.at);
         }
         objects.push_back(p);
     }
 
-    std::string lightLines;
-    const int lights = 1 + d.below(4);
-    for (int i = 0; i < lights; ++i) {
-        lightLines += "light " + triple(d.vec({-3, 0, -3}, {3, 4, 3}) * extent);
-        lightLines += " " + triple(d.vec(.2, 1)) + "\n";
-    }
+    const std::string lightLines = drawLights(d, extent);
 
     dvec3 eye(0.0), look(0.0);
     double fov = d.range(15, 80);
@@ -702,26 +714,12 @@ RandomScene randomScene(std::uint64_t seed, const Precision* precision) {
         } else {
             w.placement(p, at, size);
             p.body = w.primitive(true);
-            // A view from inside needs a point well inside (or, for the
-            // torus, in the hole): the generic origin of the centred solids.
-            // (That of a cylinder, cone, square or the pyramid lies on its
-            // surface: an eye there sees hits at t = 0.)
-            const std::string& s = p.body;
-            const bool centred = s == "sphere" || s == "cube" || s == "torus" ||
-                                 s == "tetrahedron" || s == "octahedron" || s == "dodecahedron" ||
-                                 s == "icosahedron" || s == "buckyball";
-            if (p.squashAxis < 0 && centred) centres.push_back(p.at);
+            if (p.squashAxis < 0 && centredSolid(p.body)) centres.push_back(p.at);
         }
         objects.push_back(p);
     }
 
-    // Lights: one to four, around and above.
-    std::string lightLines;
-    const int lights = 1 + d.below(4);
-    for (int i = 0; i < lights; ++i) {
-        lightLines += "light " + triple(d.vec({-3, 0, -3}, {3, 4, 3}) * extent);
-        lightLines += " " + triple(d.vec(.2, 1)) + "\n";
-    }
+    const std::string lightLines = drawLights(d, extent);
 
     // The camera.
     dvec3 eye(0.0), look(0.0);

@@ -25,6 +25,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The scene as `scene.sdl` in `dir`, with the files it names beside it.
+fs::path writeScene(const fs::path& dir, const RandomScene& r) {
+    const fs::path path = dir / "scene.sdl";
+    std::ofstream(path) << r.sdl;
+    for (const SideFile& file : r.files)
+        std::ofstream(dir / file.name, std::ios::binary) << file.bytes;
+    return path;
+}
+
 TEST(RandomScene, TheSameSeedDrawsTheSameScene) {
     const RandomScene a = randomScene(7), b = randomScene(7), c = randomScene(8);
     EXPECT_EQ(a.sdl, b.sdl);
@@ -72,10 +81,7 @@ TEST(RandomScene, EverySceneLoadsAndTogetherTheyCoverTheLanguage) {
                                     "rotate"};
     for (std::uint64_t seed = 0; seed < 300; ++seed) {
         const RandomScene r = randomScene(seed);
-        const fs::path path = dir / "scene.sdl";
-        std::ofstream(path) << r.sdl;
-        for (const SideFile& file : r.files)
-            std::ofstream(dir / file.name, std::ios::binary) << file.bytes;
+        const fs::path path = writeScene(dir, r);
         Scene scene;
         ASSERT_NO_THROW(scene = loadScene(path.string(), {}, nullptr)) << "seed " << seed << ":\n"
                                                                        << r.sdl;
@@ -225,10 +231,7 @@ TEST(RandomScene, OpenScenesGoPastTheEnvelopesAndAutoChooses) {
         const RandomScene r = randomScene(seed);
         if (!r.open) continue;
         ++open;
-        const fs::path path = dir / "scene.sdl";
-        std::ofstream(path) << r.sdl;
-        for (const SideFile& file : r.files)
-            std::ofstream(dir / file.name, std::ios::binary) << file.bytes;
+        const fs::path path = writeScene(dir, r);
         Scene scene;
         ASSERT_NO_THROW(scene = loadScene(path.string(), {}, nullptr)) << "seed " << seed << ":\n"
                                                                        << r.sdl;
