@@ -174,7 +174,11 @@ vec3 refracted(vec3 d, Surface s, float objectSpeed, inout Medium medium) {
     }
     float eta = speedOf(beyond) / speedOf(medium);  // c2 / c1
     float cos1 = -dot(s.m, d);
-    float cos2Squared = 1.0 - eta * eta * (1.0 - cos1 * cos1);
+    // cos2^2 = 1 - eta^2 (1 - cos1^2), as (1 - eta^2) + eta^2 cos1^2: in the
+    // textbook's order 1 - cos1^2 rounds to 1 once cos1 < ~2.4e-4, and a
+    // grazing ray passing between equal speeds (eta = 1) left along the
+    // surface instead of straight on; here it keeps its cos1^2 exactly.
+    float cos2Squared = (1.0 - eta * eta) + eta * eta * (cos1 * cos1);
     if (cos2Squared < 0.0) return normalize(d - 2.0 * dot(d, s.m) * s.m);
     medium = beyond;
     return normalize(eta * d + (eta * cos1 - sqrt(cos2Squared)) * s.m);

@@ -40,7 +40,8 @@ glm::dvec3 reflectDirection(const glm::dvec3& d, const glm::dvec3& m) {
 
 std::optional<glm::dvec3> refractDirection(const glm::dvec3& d, const glm::dvec3& m, double eta) {
     const double cos1 = -glm::dot(m, d);
-    const double cos2Squared = 1 - eta * eta * (1 - cos1 * cos1);
+    // Summed as the shader does (shade.glsl refracted): at eta = 1 exactly cos1^2.
+    const double cos2Squared = (1 - eta * eta) + eta * eta * (cos1 * cos1);
     if (cos2Squared < 0) return std::nullopt;
     return glm::normalize(eta * d + (eta * cos1 - std::sqrt(cos2Squared)) * m);
 }

@@ -265,6 +265,15 @@ TEST(AgreementRegressions, AReflectionStartedPastACrossingPlaneIsExplained) {
               0u);
 }
 
+// A grazing ray leaving a glass plane from its back (the file's header says
+// how): it goes straight on, in every mode.
+TEST(AgreementRegressions, AGrazingRayThroughAPlaneGoesStraightOn) {
+    for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
+        SCOPED_TRACE(precisionName(precision));
+        EXPECT_EQ(unexplainedPixels("grazing_through_a_plane.sdl", {40, 30}, precision), 0u);
+    }
+}
+
 // Two samples a pixel, each a primary ray and a shadow feeler, within 1000
 // counted loop turns a ray in both modes: each tile in one dispatch.
 void expectWalksWithin1000Turns(const Scene& scene) {

@@ -223,6 +223,21 @@ TEST(Refraction, SnellAndTotalInternalReflectionForOneSurface) {
     expectNear(*refractDirection({0, 0, -1}, m, 0.6), {0, 0, -1}, 0);
 }
 
+// Between equal speeds (eta = 1) a ray goes straight on, grazing or not:
+// summed as 1 - eta^2 (1 - cos1^2), cos1^2 below the rounding of 1 was lost
+// and a ray 1e-9 rad off a plane left along it (in float: below 2.4e-4).
+TEST(Refraction, AGrazingRayBetweenEqualSpeedsGoesStraightOn) {
+    const glm::dvec3 m(0, 0, 1);
+    for (const double grazing : {1e-3, 1e-5, 1e-9}) {
+        SCOPED_TRACE(grazing);
+        const glm::dvec3 d(std::cos(grazing), 0, -std::sin(grazing));
+        const std::optional<glm::dvec3> t = refractDirection(d, m, 1.0);
+        ASSERT_TRUE(t);
+        EXPECT_NEAR(t->z, d.z, 1e-6 * grazing);
+        EXPECT_NEAR(t->x, d.x, 1e-15);
+    }
+}
+
 TEST(Refraction, TheMediumStackRemembersFourLevels) {
     const Medium air;
     EXPECT_EQ(air.speed(), 1);
