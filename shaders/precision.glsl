@@ -38,13 +38,18 @@ const float NAIVE_EPSILON = 1e-4;
 
 // The origin of a secondary ray (shadow feeler, reflection, refraction)
 // leaving point p toward `side` (a direction; which side of the surface with
-// normal n it leaves to) in direction `along`. The one implementation of the
+// normal n it leaves to) in direction `along`; `reach` is the largest
+// coordinate of p or of the origin of the ray that met p (Surface.reach):
+// p = o + t d is rounded as the larger, so a ray that crossed the scene to a
+// hit near the eye brings its origin's rounding with it (a refracted ray
+// 1400 on met a glass cube 16 from the eye again 4e-5 inside it, where 2^-18
+// of p's own coordinates was 6e-5). The one implementation of the
 // offset; each mode keeps its own:
 //   naive   p moved by the fixed epsilon along n (and tMin = NAIVE_EPSILON);
 //   robust  after Ray Tracing Gems ch. 6 (Waechter and Binder): moved off
-//           the surface by a distance `step` that grows with |p| like the
+//           the surface by a distance `step` that grows with `reach` like the
 //           rounding error of p and of the ray re-intersecting the surface:
-//           2^-18 of the largest coordinate, 32 to 64 of its float spacings
+//           2^-18 of it, 32 to 64 of its float spacings
 //           (OFFSET_SCALE of layout.h), and at least OFFSET_GENERIC_SCALE
 //           (2^-18 = 64 u) times genericScale, which covers the rounding of
 //           the point in the object's own generic space (see below). No
@@ -52,7 +57,7 @@ const float NAIVE_EPSILON = 1e-4;
 //           of it): the origin is the eye, where points are as exact as
 //           their size, and a constant there leaks light past objects
 //           smaller than it;
-//   fp64    the same in double (2^-47 of the largest coordinate, 2^-47 =
+//   fp64    the same in double (2^-47 of `reach`, 2^-47 =
 //           64 u of double times genericScale).
 // The step off the surface (along n) is taken along the ray itself, as far as
 // OFFSET_MAX_FORWARD steps do it, the rest along n: moved along n alone, the
@@ -77,7 +82,7 @@ const double OFFSET_DOUBLE_SCALE = 1.0lf / 140737488355328.0lf;  // 2^-47 = 32 *
 const double OFFSET_DOUBLE_GENERIC_SCALE = 1.0lf / 140737488355328.0lf;  // 2^-47 = 64 * 2^-53
 #endif
 
-rvec3 offsetOrigin(rvec3 p, vec3 n, vec3 side, vec3 along, real genericScale) {
+rvec3 offsetOrigin(rvec3 p, real reach, vec3 n, vec3 side, vec3 along, real genericScale) {
 #if VKRAY_FAULT_NO_OFFSET
     return p;  // a test hook (VKRAY_FAULT=no-offset): on the surface, to show the acne that follows
 #endif
@@ -85,11 +90,10 @@ rvec3 offsetOrigin(rvec3 p, vec3 n, vec3 side, vec3 along, real genericScale) {
 #if VKRAY_PRECISION_NAIVE
     return naiveOffsetRayOrigin(p, n);
 #else
-    real largest = max(abs(p.x), max(abs(p.y), abs(p.z)));
 #if VKRAY_PRECISION_FP64
-    real step = max(OFFSET_DOUBLE_SCALE * largest, OFFSET_DOUBLE_GENERIC_SCALE * genericScale);
+    real step = max(OFFSET_DOUBLE_SCALE * reach, OFFSET_DOUBLE_GENERIC_SCALE * genericScale);
 #else
-    real step = max(OFFSET_SCALE * largest, OFFSET_GENERIC_SCALE * genericScale);
+    real step = max(OFFSET_SCALE * reach, OFFSET_GENERIC_SCALE * genericScale);
 #endif
     vec3 a = normalize(along);
     float c = dot(n, a);  // how far one unit along the ray leaves the surface

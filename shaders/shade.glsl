@@ -21,6 +21,9 @@ struct Surface {
     vec3 geometric;
     vec3 m;
     real genericScale;
+    // The largest coordinate of p or of the origin of the ray that met it:
+    // p = o + t d is rounded as the larger of the two (offsetOrigin).
+    real reach;
 };
 
 // (M^-1)^T v: a generic normal of object `index` in world space, not
@@ -77,6 +80,8 @@ real genericScaleAlong(uint index, rvec3 g, rvec3 w) {
 Surface surfaceAt(Hit hit, rvec3 origin, rvec3 direction) {
     Surface s;
     s.p = origin + hit.t * direction;
+    rvec3 extent = max(abs(s.p), abs(origin));
+    s.reach = max(extent.x, max(extent.y, extent.z));
     s.n = toWorldNormal(hit.surface, hit.genericNormal);
     rvec3 geometric = toWorldNormalUnnormalised(hit.surface, hit.geometricNormal);
     s.geometric = vec3(normalize(geometric));
@@ -276,7 +281,7 @@ uint nextFacingLight(uint i, GpuMaterial object, Surface s, vec3 v, vec3 k, bool
 // The shadow feeler from surface s toward light i: from just off the
 // surface, on m's side (where lit lights are), to the light.
 void feelerToward(uint i, Surface s, out rvec3 origin, out rvec3 direction, out real tMax) {
-    origin = offsetOrigin(s.p, s.geometric, s.m, lightOf(i).position.xyz - vec3(s.p), s.genericScale);
+    origin = offsetOrigin(s.p, s.reach, s.geometric, s.m, lightOf(i).position.xyz - vec3(s.p), s.genericScale);
     direction = lightOf(i).position.xyz - origin;
     tMax = length(direction);
     direction /= tMax;
@@ -391,7 +396,7 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
                          walkDirection, hit);
 #endif
 
-        bool record = task.level == 0u && sampleIndex == 0u;
+        bool record = task.level == 0u && sampleIndex == RECORDED_SAMPLE;
         vec3 v = -vec3(task.direction);
         if (feeler) {
 #if VKRAY_SHADOWS
@@ -465,7 +470,7 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
                     if ((follow & FOLLOW_REFRACTION) != 0u) {
                         Medium medium = task.medium;
                         vec3 t = refracted(vec3(task.direction), s, object.material.z, medium);
-                        nextRay = RayTask(offsetOrigin(s.p, s.geometric, t, t, s.genericScale), t,
+                        nextRay = RayTask(offsetOrigin(s.p, s.reach, s.geometric, t, t, s.genericScale), t,
                                           task.weight * object.material.y, task.level + 1u, medium);
                         haveNext = true;
                     }
@@ -476,7 +481,7 @@ void traceSamples(inout GpuRayProgress ray, uint samples, uint firstPixel, uint 
                         if (haveNext) pushRay(top, nextRay);  // the refracted ray waits
 #endif
                         rvec3 r = normalize(task.direction - 2.0 * dot(task.direction, rvec3(s.m)) * rvec3(s.m));
-                        nextRay = RayTask(offsetOrigin(s.p, s.geometric, vec3(r), vec3(r), s.genericScale), r,
+                        nextRay = RayTask(offsetOrigin(s.p, s.reach, s.geometric, vec3(r), vec3(r), s.genericScale), r,
                                           task.weight * object.material.x, task.level + 1u, task.medium);
                         haveNext = true;
                     }

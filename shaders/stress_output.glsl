@@ -50,8 +50,8 @@ void stressRecordWalk(uint pixel, uint sampleIndex, uint level, bool feeler, uin
         stressMetAny = stressMetLeft = false;
         return;
     }
-    stressFeelersOfPrimary = sampleIndex == 0u && level == 0u && hit.object >= 0;
-    if (sampleIndex != 0u) return;
+    stressFeelersOfPrimary = sampleIndex == RECORDED_SAMPLE && level == 0u && hit.object >= 0;
+    if (sampleIndex != RECORDED_SAMPLE) return;
     if (level == 0u) {
         rvec3 n = rvec3(0.0);
         if (hit.object >= 0) {

@@ -9,14 +9,50 @@ const float TEXTURE_PI = 3.14159265358979;
 layout(set = 0, binding = BINDING_PIXMAPS, rgba32ui) uniform readonly uimageBuffer pixmapTexels;
 layout(set = 0, binding = BINDING_TEXELS, r32ui) uniform readonly uimageBuffer imageTexels;
 
+// atan and asin to a few float spacings: a texel's row or column is chosen
+// from them, and Vulkan lets a driver's own be 4096 spacings off (lavapipe's
+// asin near -0.5 was over 8e-5 off, some 1400 spacings: a sphere's texel row
+// changed where the reference saw the point 20 times the float bound clear
+// of the border). Range-reduced odd polynomials, as Cephes' atanf and asinf
+// reduce them: at most 2.6 spacings, measured over 200 000 arguments.
+float preciseAtanUnit(float x) {  // x in [0, inf)
+    float base = 0.0;
+    if (x > 2.414213562373095) {  // tan(3 pi / 8)
+        base = 0.5 * TEXTURE_PI;
+        x = -1.0 / x;
+    } else if (x > 0.4142135623730950) {  // tan(pi / 8)
+        base = 0.25 * TEXTURE_PI;
+        x = (x - 1.0) / (x + 1.0);
+    }
+    float z = x * x;
+    return base + x + x * z * (((8.05374449538e-2 * z - 1.38776856032e-1) * z +
+                                 1.99777106478e-1) * z - 3.33329491539e-1);
+}
+float preciseAtan2(float y, float x) {
+    if (x == 0.0) return y > 0.0 ? 0.5 * TEXTURE_PI : (y < 0.0 ? -0.5 * TEXTURE_PI : 0.0);
+    float a = preciseAtanUnit(abs(y / x));
+    if (x < 0.0) a = TEXTURE_PI - a;
+    return y < 0.0 ? -a : a;
+}
+float preciseAsin(float x) {  // x in [-1, 1]
+    float a = abs(x);
+    bool far = a > 0.5;  // there asin a = pi/2 - 2 asin(sqrt((1 - a) / 2))
+    float z = far ? 0.5 * (1.0 - a) : a * a;
+    float s = far ? sqrt(z) : a;
+    float r = s + s * z * ((((4.2163199048e-2 * z + 2.4181311049e-2) * z + 4.5470025998e-2) * z +
+                            7.4953002686e-2) * z + 1.6666752422e-1);
+    if (far) r = 0.5 * TEXTURE_PI - 2.0 * r;
+    return x < 0.0 ? -r : r;
+}
+
 // The angle about the generic z axis as u in [0, 1].
-float aroundZ(vec3 g) { return 0.5 + atan(g.y, g.x) / (2.0 * TEXTURE_PI); }
+float aroundZ(vec3 g) { return 0.5 + preciseAtan2(g.y, g.x) / (2.0 * TEXTURE_PI); }
 
 // (u, v) of generic point g on a surface of `kind`; genericNormal tells a
 // cylinder's caps (normal along z) from its wall.
 vec2 surfaceUv(uint kind, vec3 g, vec3 genericNormal) {
     switch (kind) {
-    case KIND_SPHERE: return vec2(aroundZ(g), 0.5 + asin(clamp(g.z, -1.0, 1.0)) / TEXTURE_PI);
+    case KIND_SPHERE: return vec2(aroundZ(g), 0.5 + preciseAsin(clamp(g.z, -1.0, 1.0)) / TEXTURE_PI);
     case KIND_PLANE: return fract(g.xy / 2.0 + 0.5);  // one tile every 2 units
     case KIND_SQUARE: return (g.xy + 1.0) / 2.0;
     case KIND_TAPERED_CYLINDER:
@@ -30,7 +66,7 @@ vec2 surfaceUv(uint kind, vec3 g, vec3 genericNormal) {
         return (g.xy + 1.0) / 2.0;
     }
     case KIND_TORUS:
-        return vec2(aroundZ(g), 0.5 + atan(g.z, sqrt(dot(g.xy, g.xy)) - TORUS_MAJOR_RADIUS) /
+        return vec2(aroundZ(g), 0.5 + preciseAtan2(g.z, sqrt(dot(g.xy, g.xy)) - TORUS_MAJOR_RADIUS) /
                                           (2.0 * TEXTURE_PI));
     default: return fract((g.xy + 1.0) / 2.0);  // meshes
     }

@@ -71,6 +71,13 @@ GpuDoubleCamera doubleCamera;
 // lanes, and outside them with one scalar load (docs/lavapipe.md).
 FrameParams frame;
 TileParams tileParams;
+// The sample whose primary hit gives the AOVs, the debug record and the
+// stress output: sample 0, or for `vkray pixel --sample K` the one traced.
+#if VKRAY_DEBUG_PIXEL
+#define RECORDED_SAMPLE tileParams.samples.x
+#else
+#define RECORDED_SAMPLE 0u
+#endif
 
 #include "scene_data.glsl"
 

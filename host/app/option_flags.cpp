@@ -150,6 +150,12 @@ const std::vector<FlagSpec>& flagSpecs() {
          [](CLI::App& a, Options& o, const std::string& h) {
              return a.add_option("--seed", o.seed, h)->type_name("S")->check(kSeed);
          }},
+        {"--sample", "the sample to trace, of the pixel's --spp (0 to N-1, default 0)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return a.add_option("--sample", o.pixelSample, h)
+                 ->type_name("K")
+                 ->check(wholeNumberIn(0, kMaxSpp - 1));
+         }},
         {"--aov",
          "also write PREFIX.depth.pfm, PREFIX.normal.pfm, PREFIX.id.pfm; or, given "
          "NAME.exr, one OpenEXR file: R,G,B  Z  N.X,N.Y,N.Z  id  P.X,P.Y,P.Z",

@@ -66,7 +66,8 @@ const std::vector<CommandSpec>& commandSpecs() {
              "existing files stay as they were, exit status 130.\n"
              "exit status: 0 success, 1 error, 2 images differ beyond tolerance, 130 interrupted"});
 
-        FlagList pixel = {{"--size", ""}, {"--device", ""}, {"--block", ""}, {"--lenient", ""}};
+        FlagList pixel = {{"--size", ""}, {"--device", ""}, {"--block", ""},  {"--spp", ""},
+                          {"--seed", ""}, {"--sample", ""}, {"--lenient", ""}};
         pixel.insert(pixel.end(), kCameraFlags.begin(), kCameraFlags.end());
         pixel.insert(pixel.end(), {{"--shader-dir", ""},
                                    {"--variant", ""},
@@ -411,6 +412,11 @@ Options parseOptions(const std::vector<std::string>& args) {
             throw Error("pixel: (" + positional[1] + ", " + positional[2] + ") is outside the " +
                         std::to_string(o.width) + "x" + std::to_string(o.height) +
                         " image; pass --size or a smaller X Y");
+        if (o.pixelSample >= o.spp)
+            throw Error("pixel: --sample " + std::to_string(o.pixelSample) + " is not one of the " +
+                        std::to_string(o.spp) + " samples of --spp " + std::to_string(o.spp) +
+                        " (0 to " + std::to_string(o.spp - 1) +
+                        "); pass a smaller --sample or a larger --spp");
     }
     return o;
 }

@@ -87,6 +87,7 @@ struct Options {
 
     // pixel SCENE X Y
     int pixelX = 0, pixelY = 0;
+    int pixelSample = 0;  // --sample K: which of the pixel's --spp samples `pixel` traces
 
     // compare (and render --check)
     std::string imageA, imageB;

@@ -11,7 +11,9 @@ namespace vkray {
 
 int runPixel(const Options& o, std::ostream& out, std::ostream& err) {
     const Scene scene = loadSceneFor(o, err);
-    const RenderSettings settings{o.width, o.height, o.block};
+    RenderSettings settings{o.width, o.height, o.block, o.spp, o.seed};
+    settings.firstSample = o.pixelSample;
+    settings.sampleCount = 1;
     const CameraBasis camera = makeCameraBasis(chooseCamera(scene, o), o.width, o.height);
     GpuSession session;
     gpu::GpuRenderStats stats;

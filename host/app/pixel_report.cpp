@@ -81,7 +81,12 @@ std::string formatPixelReport(const Scene& scene, const RenderSettings& settings
     Table table;
     table.text_ = "pixel (" + std::to_string(gpu.x) + ", " + std::to_string(gpu.y) + ") of " +
                   std::to_string(settings.width) + "x" + std::to_string(settings.height) +
-                  (settings.block > 1 ? ", block " + std::to_string(settings.block) : "") + "\n";
+                  (settings.block > 1 ? ", block " + std::to_string(settings.block) : "") +
+                  (settings.spp > 1 ? ", sample " + std::to_string(settings.firstSample) + " of " +
+                                          std::to_string(settings.spp) + " (seed " +
+                                          std::to_string(settings.seed) + ")"
+                                    : "") +
+                  "\n";
     table.line("", gpu.geometryDigits == 17 ? "GPU (t and normal in double)" : "GPU (float)",
                "CPU reference (double)", "|GPU - CPU|");
     const int g = gpu.digits, c = cpu.digits;

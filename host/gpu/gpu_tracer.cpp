@@ -344,15 +344,14 @@ PixelTrace GpuTracer::tracePixel(const Scene& original, const CameraBasis& origi
                     " image");
     GpuRenderStats local;
     GpuRenderStats& st = stats ? *stats : local;
-    // The debug record describes one ray: the pixel's centre, one sample.
+    // The debug record describes one ray: sample firstSample of the pixel's
+    // (its centre with one sample a pixel).
     RenderSettings oneSample = settings;
-    oneSample.spp = 1;
-    oneSample.firstSample = 0;
-    oneSample.sampleCount = 0;
+    oneSample.sampleCount = 1;
     ShaderFeatures features = variantFeatures(
         scene, oneSample, options_.allFeatures, options_.precision, camera.eye,
         options_.worldTriangles ? deviceLimits(context_.device()).maxTexelBufferElements : 0);
-    features.shading[size_t(Shading::Antialias)] = false;
+    features.shading[size_t(Shading::Antialias)] = settings.spp > 1;
     features.debugPixel = true;
     features.stressOutput = true;
     const Pipeline& pipeline = pipelineFor(features, st);

@@ -151,10 +151,10 @@ public:
                              const RenderSettings& settings, std::vector<StressSample>& samples,
                              GpuRenderStats* stats = nullptr);
 
-    // `vkray pixel`: traces pixel (x, y) alone with the debug-pixel variant,
-    // which records every object test and shading term, and the stress
-    // output (t and the normal as computed: in double for fp64; the shadow
-    // feelers' verdicts).
+    // `vkray pixel`: traces sample settings.firstSample of pixel (x, y) alone
+    // with the debug-pixel variant, which records every object test and
+    // shading term, and the stress output (t and the normal as computed: in
+    // double for fp64; the shadow feelers' verdicts).
     PixelTrace tracePixel(const Scene& scene, const CameraBasis& camera,
                           const RenderSettings& settings, int x, int y,
                           GpuRenderStats* stats = nullptr);

@@ -46,11 +46,13 @@ Error noInside(const Scene& scene, const SceneObject& operand, const SceneObject
 // are met at the same t up to rounding, leaving slivers of result a few ulps
 // long, or gaps as small between spans: either would speckle the face. Ends
 // this close, relative to t, are taken as one: the gap closes, the sliver goes.
-// The two t differ by a few units of double's rounding (2^-53 = 1.1e-16) of
-// t; 1e-12 leaves a thousand times that, and keeps a real thin result: at
-// 1e-9, a union squashed to 3e-6 seen from 2.2e4 away (6e-6 thick, 3e-10 of
-// t) was removed as a sliver, where the GPU rightly drew it.
-constexpr double kCoincident = 1e-12;
+// The two t differ by a few units of double's rounding (u = 2^-53) of t,
+// each end found from its own operand's generic ray; 64 u leaves over ten
+// times that, and keeps a real thin result: at 1e-9 of t, a union squashed
+// to 3e-6 seen from 2.2e4 away (3e-10 of t) was removed as a sliver, and at
+// 1e-12 the corner of a cube in a union squashed to 2e-7, 2.4e-13 of t,
+// where the GPU rightly drew both.
+constexpr double kCoincident = 64 * 0x1p-53;
 
 bool coincident(double a, double b) {
     return std::isfinite(a) && std::isfinite(b) &&

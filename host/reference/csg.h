@@ -48,8 +48,9 @@ SpanList objectSpans(const Scene& scene, const SceneObject& object, const Ray& w
 // a (op) b for op = Union, Intersection or Difference (a minus b). Ends keep
 // their operand's surface and normal; the ends that come from b in a
 // difference have their normal negated (b's outside is the result's inside).
-// Ends within 1e-9 max(1, |t|) of each other count as one (coinciding faces
-// of the operands): such gaps close and such slivers are dropped.
+// Ends within 64 u max(1, |t|) of each other (u = 2^-53) count as one
+// (coinciding faces of the operands): such gaps close and such slivers are
+// dropped.
 SpanList combineSpans(ShapeType operation, const SpanList& a, const SpanList& b);
 
 // The boolean's nearest hit with t > tMin: the first finite span end after tMin.

@@ -82,8 +82,9 @@ PixelTrace tracePixel(const Scene& scene, const CameraBasis& camera, const Rende
     PixelTrace trace;
     trace.x = x;
     trace.y = y;
-    // Sample 0's ray: the pixel centre with one sample per pixel.
-    const Ray ray = primaryRay(camera, settings, jitteredSample(x, y, settings, 0));
+    // Sample firstSample's ray (the pixel centre with one sample per pixel).
+    const Ray ray =
+        primaryRay(camera, settings, jitteredSample(x, y, settings, settings.firstSample));
     trace.rayOrigin = ray.origin;
     trace.rayDirection = ray.direction;
     // Each top-level object on its own (a boolean's generic ray is that of its

@@ -34,7 +34,7 @@ struct ReferenceOptions {
 Frame render(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,
              const ReferenceOptions& options = {});
 
-// `vkray pixel`: sample 0's primary ray of pixel (x, y), with every object
+// `vkray pixel`: sample settings.firstSample's primary ray of pixel (x, y), with every object
 // test and the shading terms of its hit (attenuated by the shadow feelers,
 // scaled by the texture); the colour is that ray's whole Whitted colour.
 PixelTrace tracePixel(const Scene& scene, const CameraBasis& camera, const RenderSettings& settings,

@@ -147,17 +147,18 @@ std::optional<WorldHit> WhittedShader::perturbedHit(const Ray& ray, double bound
     return chosen;
 }
 
-glm::dvec3 WhittedShader::leave(const WorldHit& hit, const glm::dvec3& direction,
-                                const glm::dvec3& side) const {
+glm::dvec3 WhittedShader::leave(const WorldHit& hit, const glm::dvec3& from,
+                                const glm::dvec3& direction, const glm::dvec3& side) const {
     const glm::dvec3 origin = offsetRayOrigin(hit.point, hit.geometricNormal, side);
     if (!perturbation_) return origin;
     // The GPU's step (shaders/precision.glsl, offsetOrigin): the bound of the
-    // point's distance from the eye or the object's scale, taken along the
-    // new ray (up to 8 steps), the rest along the normal.
+    // point's or the ray's origin's distance from the eye, or the object's
+    // scale, taken along the new ray (up to 8 steps), the rest along the normal.
     const SceneObject& surface = hit.surface ? *hit.surface : scene_.objects[size_t(hit.object)];
     const double step =
         perturbation_->position *
-            std::max(largestOf(hit.point - perturbation_->eye), scaleOf(surface.worldFromObject)) +
+            std::max({largestOf(hit.point - perturbation_->eye),
+                      largestOf(from - perturbation_->eye), scaleOf(surface.worldFromObject)}) +
         perturbation_->absolute;
     if (step <= glm::length(origin - hit.point)) return origin;
     const glm::dvec3 n =
@@ -196,14 +197,14 @@ glm::dvec3 WhittedShader::lightThrough(const glm::dvec3& origin, const glm::dvec
 // s the unit vector toward the light, h = normalize(s + v), a what the
 // light's feeler lets through (0 for a light behind the surface: the surface
 // itself shadows it).
-glm::dvec3 WhittedShader::localShade(const WorldHit& hit, const Material& material,
-                                     const glm::dvec3& v, const glm::dvec3& k,
-                                     PixelTrace* trace) const {
+glm::dvec3 WhittedShader::localShade(const WorldHit& hit, const glm::dvec3& from,
+                                     const Material& material, const glm::dvec3& v,
+                                     const glm::dvec3& k, PixelTrace* trace) const {
     const glm::dvec3& p = hit.point;
     const glm::dvec3& m = hit.normal;
     glm::dvec3 color = material.emissive + k * material.ambient * scene_.globalAmbient;
     // Lit lights are on m's side of the surface: the feelers leave from there.
-    const glm::dvec3 feelerOrigin = leave(hit, m);
+    const glm::dvec3 feelerOrigin = leave(hit, from, m);
     for (const Light& light : scene_.lights) {
         PixelTrace::LightTerms term;
         const glm::dvec3 toLight = light.position - p;
@@ -216,10 +217,10 @@ glm::dvec3 WhittedShader::localShade(const WorldHit& hit, const Material& materi
             // Played, each feeler leaves as the GPU's does (feelerToward):
             // its offset's step taken along the feeler itself, which near an
             // edge can carry it out through the next face.
-            const glm::dvec3 a = term.mDotS > 0
-                                     ? lightThrough(perturbation_ ? leave(hit, s, m) : feelerOrigin,
-                                                    light.position, &hit.geometricNormal)
-                                     : glm::dvec3(0);
+            const glm::dvec3 a =
+                term.mDotS > 0 ? lightThrough(perturbation_ ? leave(hit, from, s, m) : feelerOrigin,
+                                              light.position, &hit.geometricNormal)
+                               : glm::dvec3(0);
             if (term.mDotS > 0) term.feelerMet = a != glm::dvec3(1);
             if (a != glm::dvec3(0)) {
                 term.diffuse = a * light.color * k * material.diffuse * term.mDotS;
@@ -277,14 +278,14 @@ glm::dvec3 WhittedShader::radianceLeaving(const Ray& given, int level, const Med
         trace->emissive = material.emissive;
         trace->ambient = k * material.ambient * scene_.globalAmbient;
     }
-    glm::dvec3 color = localShade(*hit, material, -ray.direction, k, trace);
+    glm::dvec3 color = localShade(*hit, ray.origin, material, -ray.direction, k, trace);
     if (level >= maxDepth_) return color;
 
     const glm::dvec3& d = ray.direction;
     const glm::dvec3& m = hit->normal;
     if (material.reflectivity > scene_.minReflectivity) {
         const glm::dvec3 r = reflectDirection(d, m);
-        const Ray reflected{leave(*hit, r), r};
+        const Ray reflected{leave(*hit, ray.origin, r), r};
         color += material.reflectivity * radianceLeaving(reflected, level + 1, medium,
                                                          &hit->geometricNormal, nullptr, nullptr);
     }
@@ -294,7 +295,7 @@ glm::dvec3 WhittedShader::radianceLeaving(const Ray& given, int level, const Med
         const Medium beyond = hit->entering ? medium.entered(material.speedOfLight) : medium.left();
         const std::optional<glm::dvec3> t = refractDirection(d, m, beyond.speed() / medium.speed());
         const glm::dvec3 direction = t ? *t : reflectDirection(d, m);
-        const Ray transmitted{leave(*hit, direction), direction};
+        const Ray transmitted{leave(*hit, ray.origin, direction), direction};
         color +=
             material.transparency * radianceLeaving(transmitted, level + 1, t ? beyond : medium,
                                                     &hit->geometricNormal, nullptr, nullptr);

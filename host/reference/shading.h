@@ -114,8 +114,9 @@ public:
                             const glm::dvec3* surface = nullptr) const;
 
 private:
-    glm::dvec3 localShade(const WorldHit& hit, const Material& material, const glm::dvec3& v,
-                          const glm::dvec3& k, PixelTrace* trace) const;
+    // `from`: the origin of the ray that met the hit.
+    glm::dvec3 localShade(const WorldHit& hit, const glm::dvec3& from, const Material& material,
+                          const glm::dvec3& v, const glm::dvec3& k, PixelTrace* trace) const;
     // The perturbed parts (perturbation_ set).
     double reachAlong(const Ray& ray) const;
     double boundOf(const Ray& ray, int level) const;
@@ -130,12 +131,14 @@ private:
                                const glm::dvec3* leftNormal, std::optional<WorldHit>* firstHit,
                                PixelTrace* trace) const;
     std::optional<WorldHit> perturbedHit(const Ray& ray, double bound) const;
-    // Where a ray along `direction` leaves the hit, on `side`'s side of the
-    // surface (a feeler: the shading normal's; else its own direction's).
-    glm::dvec3 leave(const WorldHit& hit, const glm::dvec3& direction,
+    // Where a ray along `direction` leaves the hit that a ray from `from`
+    // met, on `side`'s side of the surface (a feeler: the shading normal's;
+    // else its own direction's).
+    glm::dvec3 leave(const WorldHit& hit, const glm::dvec3& from, const glm::dvec3& direction,
                      const glm::dvec3& side) const;
-    glm::dvec3 leave(const WorldHit& hit, const glm::dvec3& direction) const {
-        return leave(hit, direction, direction);
+    glm::dvec3 leave(const WorldHit& hit, const glm::dvec3& from,
+                     const glm::dvec3& direction) const {
+        return leave(hit, from, direction, direction);
     }
 
     const Scene& scene_;

@@ -184,10 +184,22 @@ TorusCrossings torusCrossings(rvec3 o, rvec3 d) {
         real F = k * k - 4.0 * R * R * dot(p.xy, p.xy);
         rvec3 gradient = 4.0 * k * p - 8.0 * R * R * rvec3(p.xy, 0.0);
         real slope = dot(gradient, u);
-        if (slope != 0.0 && abs(F / slope) < 1e-2) si -= F / slope;
-        p = e + si * u;
-        k = dot(p, p) + R * R - r * r;
-        setTorusNormal(crossings, i, 4.0 * k * p - 8.0 * R * R * rvec3(p.xy, 0.0));
+        real step = slope != 0.0 ? F / slope : real(0.0);
+        if (abs(step) < 1e-2) {
+            rvec3 q = e + (si - step) * u;
+            real kq = dot(q, q) + R * R - r * r;
+            rvec3 polished = 4.0 * kq * q - 8.0 * R * R * rvec3(q.xy, 0.0);
+            // Near a grazing ray's pair of roots the slope is small and the
+            // step long: one that crosses the pair's tangent point (F's slope
+            // changes sign) has left the root's monotone interval, and its
+            // normal faced the other way (an entry shaded as an exit). Keep
+            // the bracketed root there.
+            if (dot(polished, u) * slope > 0.0) {
+                si -= step;
+                gradient = polished;
+            }
+        }
+        setTorusNormal(crossings, i, gradient);
         crossings.t = withRoot(crossings.t, i, (tEnter + si) / dLength);
     }
     return crossings;

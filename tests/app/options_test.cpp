@@ -115,8 +115,18 @@ TEST(Options, BadSamplesOrSeedNameTheFlag) {
     EXPECT_NE(errorOf({"render", "s.sdl", "--seed", "4294967296"}).find("0 to 4294967295"),
               std::string::npos);
     EXPECT_NE(errorOf({"render", "s.sdl", "--seed", "x"}).find("--seed"), std::string::npos);
-    // `pixel` traces the one ray through the pixel's centre.
-    EXPECT_NE(errorOf({"pixel", "s.sdl", "1", "1", "--spp", "4"}).find("unknown option '--spp'"),
+    // `pixel` traces one sample of the pixel's --spp: one of them.
+    const Options o =
+        parse({"pixel", "s.sdl", "1", "1", "--spp", "4", "--seed", "7", "--sample", "3"});
+    EXPECT_EQ(o.spp, 4);
+    EXPECT_EQ(o.seed, 7u);
+    EXPECT_EQ(o.pixelSample, 3);
+    EXPECT_NE(errorOf({"pixel", "s.sdl", "1", "1", "--spp", "4", "--sample", "4"})
+                  .find("pixel: --sample 4 is not one of the 4 samples of --spp 4 (0 to 3)"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"pixel", "s.sdl", "1", "1", "--sample", "1"}).find("--sample 1"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.sdl", "--sample", "1"}).find("unknown option '--sample'"),
               std::string::npos);
 }
 

@@ -274,6 +274,42 @@ TEST(AgreementRegressions, AGrazingRayThroughAPlaneGoesStraightOn) {
     }
 }
 
+// A refracted ray leaving a hit that a ray from far across the scene met
+// (the file's header says how): its offset covers the far origin's rounding.
+TEST(AgreementRegressions, ARayFromAcrossTheSceneLeavesTheSurfaceItMet) {
+    for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
+        SCOPED_TRACE(precisionName(precision));
+        EXPECT_EQ(unexplainedPixels("glass_cube_met_across_a_sphere.sdl", {40, 30}, precision), 0u);
+    }
+}
+
+// A sphere's texel row chosen by the shader's own asin (the file's header
+// says how): the driver's may be 4096 float spacings off.
+TEST(AgreementRegressions, ASpheresTexelRowIsTheReferencesClearOfTheBorder) {
+    for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
+        SCOPED_TRACE(precisionName(precision));
+        EXPECT_EQ(unexplainedPixels("sphere_texel_row_from_inside.sdl", {40, 30, 1, 2, 1207818942u},
+                                    precision),
+                  0u);
+    }
+}
+
+// The corner of a cube in a squashed union far away (the file's header says
+// how): a real thin chord, drawn by both.
+TEST(AgreementRegressions, ACubesCornerInASquashedUnionIsNoSliver) {
+    EXPECT_EQ(unexplainedPixels("cube_corner_in_a_squashed_union.sdl", {40, 30, 1, 9, 4264315813u},
+                                Precision::Fp64),
+              0u);
+}
+
+// A ray grazing a huge torus from just above it (the file's header says
+// how): a hit, where rounding gives one, is an entry lit as one.
+TEST(AgreementRegressions, ATorusGrazedFromJustAboveIsEnteredNotLeft) {
+    EXPECT_EQ(unexplainedPixels("torus_grazed_from_above.sdl", {40, 30, 1, 9, 3878126044u},
+                                Precision::Robust),
+              0u);
+}
+
 // Two samples a pixel, each a primary ray and a shadow feeler, within 1000
 // counted loop turns a ray in both modes: each tile in one dispatch.
 void expectWalksWithin1000Turns(const Scene& scene) {

@@ -122,5 +122,37 @@ TEST(PixelTrace, BlockPixelsTraceTheirBlocksRay) {
     expectNear(b.rayDirection, a.rayDirection, 0);
 }
 
+// `vkray pixel --spp N --seed S --sample K`: both sides trace sample K's
+// jittered ray, and its colour is the colour a render of that one sample gives.
+TEST(PixelTrace, OneSampleOfManyIsTracedAsARenderTracesIt) {
+    const Scene scene = parseSdl(
+        "camera eye 0 0 5 fov 40 background 0.2 0.3 0.4\n"
+        "light 3 4 10 1 1 1\n"
+        "diffuse 0.5 0.25 0.125 texture 1 parameters 4 0.1 0 0 0\n"
+        "push translate 0 0 -2 sphere pop\n",
+        "t.sdl", {});
+    RenderSettings settings{7, 7, 1, 9, 12345};
+    const CameraBasis camera = makeCameraBasis(*scene.camera, 7, 7);
+    gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir});
+    for (const int k : {0, 4, 8}) {
+        SCOPED_TRACE(k);
+        settings.firstSample = k;
+        settings.sampleCount = 1;
+        const PixelTrace gpu = tracer.tracePixel(scene, camera, settings, 2, 3);
+        const PixelTrace cpu = reference::tracePixel(scene, camera, settings, 2, 3);
+        const glm::dvec3 d = primaryDirection(camera, settings, jitteredSample(2, 3, settings, k));
+        expectNear(gpu.rayDirection, d, 1e-7);
+        expectNear(cpu.rayDirection, d, 0);
+        const Frame one = tracer.render(scene, camera, settings);
+        expectNear(gpu.color, glm::dvec3(one.color[one.index(2, 3)]), 1e-6);
+        expectNear(cpu.color, gpu.color, 1e-5);
+    }
+    // Sample 4's ray is not the centre's.
+    settings.firstSample = 4;
+    EXPECT_GT(glm::length(tracer.tracePixel(scene, camera, settings, 2, 3).rayDirection -
+                          primaryDirection(camera, settings, {2.5, 3.5})),
+              1e-4);
+}
+
 }  // namespace
 }  // namespace vkray

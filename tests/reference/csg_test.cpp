@@ -206,6 +206,14 @@ TEST(Csg, AThinResultFarAwayIsNoSliver) {
     ASSERT_EQ(spans.size(), 1u);
     EXPECT_NEAR(spans[0].enter.t, 2.2e4 - 3e-6, 1e-9);
     EXPECT_NEAR(spans[0].exit.t, 2.2e4 + 3e-6, 1e-9);
+    // 3e-9 thick: 2.7e-13 of t, which ends within 1e-12 of t once took for a
+    // sliver too (the corner of a cube in a union squashed to 2e-7).
+    const SceneObject thinner =
+        boolean(ShapeType::Union, placed(ShapeType::Cube, {0, 0, 0}, {1, 1, 3e-9}),
+                placed(ShapeType::Cube, {0.5, 0, 0}, {1, 1, 3e-9}));
+    const SpanList thin = objectSpans(kNoMeshes, thinner, {{0.2, 0.1, 2.2e4}, {0, 0, -1}});
+    ASSERT_EQ(thin.size(), 1u);
+    EXPECT_NEAR(thin[0].exit.t - thin[0].enter.t, 6e-9, 1e-11);
 }
 
 Scene sceneWithSphereMesh(bool closed) {
