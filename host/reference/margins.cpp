@@ -29,12 +29,7 @@ MarginTracer::MarginTracer(const Scene& scene, const CameraBasis& camera,
     RayPerturbation base;
     base.boxes = &plays_->boxes;
     base.eye = camera.eye;
-    base.position = bound.position;
-    base.primaryTilt = bound.primaryTilt;
-    base.secondaryTilt = bound.secondaryTilt;
-    base.secondaryPosition = bound.secondaryPosition;
-    base.texture = bound.texture;
-    base.absolute = bound.absolute;
+    base.bound = bound;
     RayPerturbation offsets = base;
     offsets.sideways = false;
     plays_->perturbations.push_back(offsets);

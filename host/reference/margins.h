@@ -7,6 +7,7 @@
 // else a difference is the GPU's fault.
 #pragma once
 
+#include "reference/shading.h"
 #include "render/camera.h"
 #include "scene/scene.h"
 
@@ -17,18 +18,6 @@
 #include <vector>
 
 namespace vkray::reference {
-
-// A GPU mode's error, relative to how far from the eye a ray works (its
-// reach: shading.h's reachOf): where float places a hit and from where a
-// secondary ray leaves, how far a ray's direction may turn, and where a
-// texture is looked up.
-struct ErrorBound {
-    double position = 0;
-    double primaryTilt = 0, secondaryTilt = 0;
-    double secondaryPosition = 0;  // a secondary ray's origin, of its distance from the eye
-    double texture = 0;
-    double absolute = 0;  // a fixed epsilon's (naive)
-};
 
 // The reference's value of one pixel (or block) over every play of the bound.
 struct PixelSpan {

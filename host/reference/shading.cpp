@@ -95,7 +95,8 @@ double WhittedShader::reachAlong(const Ray& ray) const {
         // Padded by twice the bound at this object's reach.
         Aabb padded = box;
         if (box.finite()) {
-            const double pad = 2 * (perturbation_->position * own + perturbation_->absolute);
+            const double pad =
+                2 * (perturbation_->bound.position * own + perturbation_->bound.absolute);
             padded.lo -= glm::dvec3(pad);
             padded.hi += glm::dvec3(pad);
         }
@@ -107,10 +108,11 @@ double WhittedShader::reachAlong(const Ray& ray) const {
 }
 
 double WhittedShader::boundOf(const Ray& ray, int level) const {
-    const double bound = perturbation_->position * reachAlong(ray) + perturbation_->absolute;
+    const double bound =
+        perturbation_->bound.position * reachAlong(ray) + perturbation_->bound.absolute;
     if (level == 0) return bound;
-    return std::max(bound,
-                    perturbation_->secondaryPosition * largestOf(ray.origin - perturbation_->eye));
+    return std::max(
+        bound, perturbation_->bound.secondaryPosition * largestOf(ray.origin - perturbation_->eye));
 }
 
 Ray WhittedShader::moved(const Ray& ray, double bound, int level, const glm::dvec3* surface) const {
@@ -121,7 +123,8 @@ Ray WhittedShader::moved(const Ray& ray, double bound, int level, const glm::dve
     const glm::dvec3 e2 = glm::cross(d, e1);
     const glm::dvec3 side =
         std::cos(perturbation_->angle) * e1 + std::sin(perturbation_->angle) * e2;
-    const double tilt = level == 0 ? perturbation_->primaryTilt : perturbation_->secondaryTilt;
+    const double tilt =
+        level == 0 ? perturbation_->bound.primaryTilt : perturbation_->bound.secondaryTilt;
     glm::dvec3 step = side;
     if (surface && glm::dot(*surface, *surface) > 0) {
         const glm::dvec3 n = glm::normalize(*surface);
@@ -156,10 +159,10 @@ glm::dvec3 WhittedShader::leave(const WorldHit& hit, const glm::dvec3& from,
     // scale, taken along the new ray (up to 8 steps), the rest along the normal.
     const SceneObject& surface = hit.surface ? *hit.surface : scene_.objects[size_t(hit.object)];
     const double step =
-        perturbation_->position *
+        perturbation_->bound.position *
             std::max({largestOf(hit.point - perturbation_->eye),
                       largestOf(from - perturbation_->eye), scaleOf(surface.worldFromObject)}) +
-        perturbation_->absolute;
+        perturbation_->bound.absolute;
     if (step <= glm::length(origin - hit.point)) return origin;
     const glm::dvec3 n =
         glm::dot(hit.geometricNormal, side) < 0 ? -hit.geometricNormal : hit.geometricNormal;
@@ -267,8 +270,9 @@ glm::dvec3 WhittedShader::radianceLeaving(const Ray& given, int level, const Med
         // To the side and along the ray (a float point is rounded in every
         // coordinate; seen at grazing incidence, along the ray is across the
         // cells).
-        const Ray aside = moved({hit->point, ray.direction},
-                                perturbation_->texture * reach + perturbation_->absolute, -1);
+        const Ray aside =
+            moved({hit->point, ray.direction},
+                  perturbation_->bound.texture * reach + perturbation_->bound.absolute, -1);
         texturePoint = aside.origin + double(perturbation_->feelerSide) *
                                           glm::length(aside.origin - hit->point) *
                                           glm::normalize(ray.direction);

@@ -54,25 +54,34 @@ std::optional<glm::dvec3> refractDirection(const glm::dvec3& d, const glm::dvec3
 // operand that was hit, as in Hill ch. 14).
 const Material& materialOf(const Scene& scene, const WorldHit& hit);
 
-// A GPU mode's rounding played on the reference's rays (margins.h): every
-// ray of a sample's tree, before it is intersected, moved `side` of it by
-// `position` of its reach (reachOf) and tilted by `tilt`; its secondary
-// rays leave the surface as the GPU's do (offsetOrigin's step); its texture looked
-// up `texture` of the hit's reach to the side; a feeler's blocker within
-// the bound of the light counted (feelerSide +1) or not (-1); and, with
-// `runnerUp`, a hit within the bound of the closest won by the object of
-// the highest index instead of the lowest. Each decision the shader takes
-// can then go the way the GPU's rounding may take it.
-struct RayPerturbation {
-    glm::dvec3 eye{0};             // the GPU's coordinates are the eye's
+// A GPU mode's error, relative to how far from the eye a ray works (its
+// reach: reachOf): where float places a hit and from where a secondary ray
+// leaves, how far a ray's direction may turn, and where a texture is
+// looked up.
+struct ErrorBound {
     double position = 0;           // relative to the ray's reach
     double primaryTilt = 0;        // radians, the primary ray
     double secondaryTilt = 0;      // radians, every secondary ray
     double secondaryPosition = 0;  // a secondary ray's origin: of |origin - eye|
     double texture = 0;            // relative to the hit's reach
-    double absolute = 0;           // added to every bound: a fixed epsilon's
-    double angle = 0;              // the side: radians about the ray
-    bool sideways = true;          // false: no move, no tilt
+    double absolute = 0;           // added to every bound: a fixed epsilon's (naive)
+};
+
+// A GPU mode's rounding played on the reference's rays (margins.h): every
+// ray of a sample's tree, before it is intersected, moved `side` of it by
+// the bound's `position` of its reach (reachOf) and tilted by its tilt; its
+// secondary rays leave the surface as the GPU's do (offsetOrigin's step);
+// its texture looked up the bound's `texture` of the hit's reach to the
+// side; a feeler's blocker within the bound of the light counted
+// (feelerSide +1) or not (-1); and, with `runnerUp`, a hit within the bound
+// of the closest won by the object of the highest index instead of the
+// lowest. Each decision the shader takes can then go the way the GPU's
+// rounding may take it.
+struct RayPerturbation {
+    glm::dvec3 eye{0};  // the GPU's coordinates are the eye's
+    ErrorBound bound;
+    double angle = 0;      // the side: radians about the ray
+    bool sideways = true;  // false: no move, no tilt
     int feelerSide = 1;
     bool runnerUp = false;
     // Every object's world box (worldBounds), in scene order: a ray counts

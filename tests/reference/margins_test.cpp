@@ -34,7 +34,7 @@ std::vector<int> idsMet(const Scene& scene, double height, double position, bool
         RayPerturbation p;
         p.eye = {0, height, 10};
         p.boxes = &boxes;
-        p.position = position;
+        p.bound.position = position;
         p.angle = side * std::acos(-1.0) / 4;
         p.sideways = !runnerUp;
         p.runnerUp = runnerUp;
