@@ -22,6 +22,8 @@
 #include <list>
 #include <map>
 #include <memory>
+#include <optional>
+#include <utility>
 
 namespace vkray {
 
@@ -36,6 +38,7 @@ struct Verdict {
     std::string refusal;        // the reader's or the GPU's error, when either refused the scene
     std::string notComparable;  // what passes fp64's envelope too, for an open scene
     std::string figures;        // what the comparison found
+    std::optional<std::pair<int, int>> firstUnexplained;  // the first pixel nothing explains
 };
 
 // The run's GPU tracers, one per shader variant and mode, the 64 used last
@@ -119,6 +122,7 @@ Verdict judge(const std::string& path, const RandomScene& r, Tracers& tracers, c
                       settings.width, settings.height, a.differing, a.pixels, a.setAside,
                       a.unexplained, a.largest);
         v.figures = text;
+        if (!a.firstUnexplained.empty()) v.firstUnexplained = a.firstUnexplained.front();
     } catch (const gpu::BeyondTheLoopLimit& refused) {  // right or refused: refused, and said
         v.refusal = refused.what();
     } catch (const Error& refused) {  // the reader's (a generator's bug) or the GPU's own limits
@@ -132,6 +136,19 @@ std::string commandFor(const std::string& path, const RandomScene& r) {
            std::to_string(r.height) + " --spp " + std::to_string(r.spp) + " --seed " +
            std::to_string(r.sampleSeed) + " --block " + std::to_string(r.block) + " --precision " +
            (r.open ? "auto" : precisionName(r.precision)) + " --check";
+}
+
+// `vkray pixel` on the first unexplained pixel, in the mode rendered: with
+// several samples, --sample 0 .. spp - 1 shows each one's tree.
+std::string pixelCommandFor(const std::string& path, const RandomScene& r, const Verdict& v) {
+    std::string command = "vkray pixel " + path + " " + std::to_string(v.firstUnexplained->first) +
+                          " " + std::to_string(v.firstUnexplained->second) + " --size " +
+                          std::to_string(r.width) + "x" + std::to_string(r.height) + " --block " +
+                          std::to_string(r.block) + " --precision " + precisionName(v.precision);
+    if (r.spp > 1)
+        command += " --spp " + std::to_string(r.spp) + " --seed " + std::to_string(r.sampleSeed) +
+                   " --sample K  (K = 0 to " + std::to_string(r.spp - 1) + ")";
+    return command;
 }
 
 }  // namespace
@@ -181,7 +198,9 @@ int runDifftest(const Options& o, std::ostream& out, std::ostream& err) {
         }
         ++disagreed;
         out << "DISAGREE seed " << seed << " (" << mode << "): " << v.figures << "\n  "
-            << commandFor(path, r) << std::endl;
+            << commandFor(path, r) << "\n";
+        if (v.firstUnexplained) out << "  " << pixelCommandFor(path, r, v) << "\n";
+        out << std::flush;
     }
     const double seconds = stopwatch.seconds();
     out << "difftest: " << o.difftestScenes << " scenes (seeds " << std::uint64_t(o.seed) << " to "

@@ -86,6 +86,11 @@ TEST_F(Difftest, AShaderWrongOnOnePixelFails) {
         << run.output;
     EXPECT_NE(run.output.find("difftest: 0 passed, 1 failed"), std::string::npos) << run.output;
     EXPECT_TRUE(fs::exists(dir / "found" / "seed-101.sdl"));  // kept, to look at
+    // ... with the command that traces the pixel on both sides.
+    EXPECT_NE(run.output.find("vkray pixel " + path("found") +
+                              "/seed-101.sdl 20 15 --size 40x30 --block 1 --precision robust\n"),
+              std::string::npos)
+        << run.output;
 }
 
 TEST_F(Difftest, AGpuThatDrawsSomethingElseIsCaught) {
