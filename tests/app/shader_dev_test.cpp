@@ -61,6 +61,24 @@ TEST_F(ShaderDev, PixelTracesTheAnalyticRayOnBothSides) {
         << run.output;
 }
 
+// `pixel` traces in the mode `render` would: auto's choice from the scene
+// (a sphere seen from 1e5 of its radii is past robust's 1.6e4), or the
+// mode asked for.
+TEST_F(ShaderDev, PixelTracesInTheModeRenderWould) {
+    const std::string far = scene("far.sdl",
+                                  "camera eye 0 0 100000 look 0 0 0 up 0 1 0 fov 0.002\n"
+                                  "light 0 10 100000 1 1 1\nsphere\n");
+    RunResult run = vkray("pixel " + far + " 1 1 --size 3x3");
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("precision: auto chose fp64: the 'sphere' at "), std::string::npos)
+        << run.output;
+    EXPECT_NE(run.output.find("GPU (t and normal in double)"), std::string::npos) << run.output;
+    run = vkray("pixel " + far + " 1 1 --size 3x3 --precision robust");
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("GPU (float)"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("warning: the 'sphere'"), std::string::npos) << run.output;
+}
+
 TEST_F(ShaderDev, PixelOutsideTheImageIsAnError) {
     RunResult run = vkray("pixel " + scene("p.sdl", kPlaneScene) + " 3 1 --size 3x3");
     EXPECT_EQ(run.status, 1) << run.output;
