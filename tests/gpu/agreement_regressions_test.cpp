@@ -283,6 +283,13 @@ TEST(AgreementRegressions, ARayFromAcrossTheSceneLeavesTheSurfaceItMet) {
     }
 }
 
+// A feeler past a cube's edge under an unchanged texel (the file's header
+// says how): the plays move the rays with the textures left where the hits are.
+TEST(AgreementRegressions, AFeelerPastAnEdgeUnderTheSameTexelIsExplained) {
+    EXPECT_EQ(unexplainedPixels("feeler_past_an_edge_under_a_texel.sdl", {24, 18}, Precision::Fp64),
+              0u);
+}
+
 // A sphere's texel row chosen by the shader's own asin (the file's header
 // says how): the driver's may be 4096 float spacings off.
 TEST(AgreementRegressions, ASpheresTexelRowIsTheReferencesClearOfTheBorder) {
