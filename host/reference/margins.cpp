@@ -43,9 +43,17 @@ MarginTracer::MarginTracer(const Scene& scene, const CameraBasis& camera,
     base.boxes = &plays_->boxes;
     base.eye = camera.eye;
     base.bound = bound;
-    RayPerturbation offsets = base;
-    offsets.sideways = false;
-    plays_->perturbations.push_back(offsets);
+    // The GPU's own geometry, its steps off each surface landing where it
+    // computes them, or the bound further or shorter along the new ray (a
+    // reflection inside a buckyball left near an edge: the GPU's float step
+    // landed outside the next face, where the same step in double stops
+    // 6e-6 short of it).
+    for (const int ahead : {0, 1, -1}) {
+        RayPerturbation offsets = base;
+        offsets.sideways = false;
+        offsets.stepAhead = ahead;
+        plays_->perturbations.push_back(offsets);
+    }
     // The eight sides; in a textured scene each again with its textures
     // looked up where its hits are. The GPU's texture lookups and its rays
     // round apart: plays that moved both at once missed a sample whose
@@ -74,7 +82,7 @@ MarginTracer::MarginTracer(const Scene& scene, const CameraBasis& camera,
 MarginTracer::~MarginTracer() = default;
 
 int marginPlays(const Scene& scene) {
-    return anyTextured(scene) ? 19 : 11;
+    return anyTextured(scene) ? 21 : 13;
 }
 
 PixelSpan MarginTracer::spanOf(int x, int y) const {

@@ -32,7 +32,8 @@ struct PixelSpan {
 
 // The number of plays: the reference itself; its rays unmoved but leaving
 // surfaces as the GPU's do (the GPU's own geometry, its offset's step
-// along each new ray); eight sides of the bound, and in a scene with
+// along each new ray), and so with each step landing the bound further or
+// shorter along the ray; eight sides of the bound, and in a scene with
 // textures eight more that look them up where their hits are; and the
 // runner-up winning every tie within it.
 int marginPlays(const Scene& scene);

@@ -169,7 +169,8 @@ glm::dvec3 WhittedShader::leave(const WorldHit& hit, const glm::dvec3& from,
     const glm::dvec3 a = glm::normalize(direction);
     const double c = glm::dot(n, a);
     const double forward = c > 0 ? std::min(step / c, 8 * step) : 0.0;
-    return hit.point + forward * a + std::max(step - forward * c, 0.0) * n;
+    const double landed = std::max(forward + perturbation_->stepAhead * step, 0.0);
+    return hit.point + landed * a + std::max(step - forward * c, 0.0) * n;
 }
 
 glm::dvec3 WhittedShader::lightThrough(const glm::dvec3& origin, const glm::dvec3& lightPosition,

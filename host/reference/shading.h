@@ -83,6 +83,10 @@ struct RayPerturbation {
     double angle = 0;      // the side: radians about the ray
     bool sideways = true;  // false: no move, no tilt
     int feelerSide = 1;
+    // Where a ray leaves a surface, the GPU's step taken that much further
+    // along the new ray (+1) or short of it (-1), in the bound's measure:
+    // the step lands in float, rounded as every eye-frame point is.
+    int stepAhead = 0;
     bool runnerUp = false;
     // Every object's world box (worldBounds), in scene order: a ray counts
     // an object's reach where it passes within the bound of its box (a

@@ -290,6 +290,14 @@ TEST(AgreementRegressions, AFeelerPastAnEdgeUnderTheSameTexelIsExplained) {
               0u);
 }
 
+// A reflection whose offset's step lands past the next face of a buckyball
+// (the file's header says how): the GPU's step lands in float.
+TEST(AgreementRegressions, AStepLandingPastTheNextFaceIsExplained) {
+    EXPECT_EQ(unexplainedPixels("reflection_past_a_buckyball_edge.sdl", {24, 18, 1, 2, 3551097776u},
+                                Precision::Robust),
+              0u);
+}
+
 // A sphere's texel row chosen by the shader's own asin (the file's header
 // says how): the driver's may be 4096 float spacings off.
 TEST(AgreementRegressions, ASpheresTexelRowIsTheReferencesClearOfTheBorder) {
