@@ -81,8 +81,8 @@ MarginTracer::MarginTracer(const Scene& scene, const CameraBasis& camera,
 
 MarginTracer::~MarginTracer() = default;
 
-int marginPlays(const Scene& scene) {
-    return anyTextured(scene) ? 21 : 13;
+int MarginTracer::plays() const {
+    return int(plays_->shaders.size());
 }
 
 PixelSpan MarginTracer::spanOf(int x, int y) const {

@@ -30,14 +30,12 @@ struct PixelSpan {
     std::vector<FirstHit> firstHits;  // sample 0's, one a play, the reference's own first
 };
 
-// The number of plays: the reference itself; its rays unmoved but leaving
+// The plays: the reference itself; its rays unmoved but leaving
 // surfaces as the GPU's do (the GPU's own geometry, its offset's step
 // along each new ray), and so with each step landing the bound further or
 // shorter along the ray; eight sides of the bound, and in a scene with
 // textures eight more that look them up where their hits are; and the
 // runner-up winning every tie within it.
-int marginPlays(const Scene& scene);
-
 class MarginTracer {
 public:
     // All must outlive the tracer.
@@ -48,6 +46,8 @@ public:
     // The pixel (x, y)'s span; with a block, (x, y) is the block's first pixel.
     // Thread-safe.
     PixelSpan spanOf(int x, int y) const;
+    // How many plays each sample is traced in (the reference's own first).
+    int plays() const;
 
 private:
     struct Plays;

@@ -229,6 +229,14 @@ std::size_t unexplainedPixels(const std::string& name, const RenderSettings& set
     return a.unexplained;
 }
 
+// Every differing pixel of the pinned scene explained, in robust and fp64.
+void expectExplainedInRobustAndFp64(const std::string& name, const RenderSettings& settings) {
+    for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
+        SCOPED_TRACE(precisionName(precision));
+        EXPECT_EQ(unexplainedPixels(name, settings, precision), 0u);
+    }
+}
+
 TEST(AgreementRegressions, FloorsToTheirHorizonDifferOnlyWhereTheMarginRuleExplains) {
     for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
         SCOPED_TRACE(precisionName(precision));
@@ -243,10 +251,7 @@ TEST(AgreementRegressions, FloorsToTheirHorizonDifferOnlyWhereTheMarginRuleExpla
 // A pixmap's row border on a face seen through glass: the plays must not
 // start feelers inside the face they leave (the file's header says how).
 TEST(AgreementRegressions, ATexelBorderOnAFaceSeenThroughGlassIsExplained) {
-    for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
-        SCOPED_TRACE(precisionName(precision));
-        EXPECT_EQ(unexplainedPixels("texel_border_through_glass.sdl", {160, 120}, precision), 0u);
-    }
+    expectExplainedInRobustAndFp64("texel_border_through_glass.sdl", {160, 120});
 }
 
 // A refracted ray that meets a glass cube again at an edge: the plays'
@@ -268,19 +273,13 @@ TEST(AgreementRegressions, AReflectionStartedPastACrossingPlaneIsExplained) {
 // A grazing ray leaving a glass plane from its back (the file's header says
 // how): it goes straight on, in every mode.
 TEST(AgreementRegressions, AGrazingRayThroughAPlaneGoesStraightOn) {
-    for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
-        SCOPED_TRACE(precisionName(precision));
-        EXPECT_EQ(unexplainedPixels("grazing_through_a_plane.sdl", {40, 30}, precision), 0u);
-    }
+    expectExplainedInRobustAndFp64("grazing_through_a_plane.sdl", {40, 30});
 }
 
 // A refracted ray leaving a hit that a ray from far across the scene met
 // (the file's header says how): its offset covers the far origin's rounding.
 TEST(AgreementRegressions, ARayFromAcrossTheSceneLeavesTheSurfaceItMet) {
-    for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
-        SCOPED_TRACE(precisionName(precision));
-        EXPECT_EQ(unexplainedPixels("glass_cube_met_across_a_sphere.sdl", {40, 30}, precision), 0u);
-    }
+    expectExplainedInRobustAndFp64("glass_cube_met_across_a_sphere.sdl", {40, 30});
 }
 
 // A feeler past a cube's edge under an unchanged texel (the file's header
@@ -301,12 +300,7 @@ TEST(AgreementRegressions, AStepLandingPastTheNextFaceIsExplained) {
 // A sphere's texel row chosen by the shader's own asin (the file's header
 // says how): the driver's may be 4096 float spacings off.
 TEST(AgreementRegressions, ASpheresTexelRowIsTheReferencesClearOfTheBorder) {
-    for (const Precision precision : {Precision::Robust, Precision::Fp64}) {
-        SCOPED_TRACE(precisionName(precision));
-        EXPECT_EQ(unexplainedPixels("sphere_texel_row_from_inside.sdl", {40, 30, 1, 2, 1207818942u},
-                                    precision),
-                  0u);
-    }
+    expectExplainedInRobustAndFp64("sphere_texel_row_from_inside.sdl", {40, 30, 1, 2, 1207818942u});
 }
 
 // The corner of a cube in a squashed union far away (the file's header says

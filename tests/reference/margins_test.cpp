@@ -87,8 +87,8 @@ TEST(Margins, APixelInsideAnObjectHasOneValueAndOneId) {
     const CameraBasis basis = makeCameraBasis(camera, 9, 9);
     const MarginTracer margins(scene, basis, settings, {0x1p-18, 0x1p-18, 0x1p-18, 0x1p-18, 0});
     const PixelSpan span = margins.spanOf(4, 4);
-    ASSERT_EQ(span.firstHits.size(), std::size_t(marginPlays(scene)));
-    EXPECT_EQ(marginPlays(scene), 13);  // untextured: no plays with the textures unmoved
+    ASSERT_EQ(span.firstHits.size(), std::size_t(margins.plays()));
+    EXPECT_EQ(margins.plays(), 13);  // untextured: no plays with the textures unmoved
     for (const PixelSpan::FirstHit& hit : span.firstHits) {
         EXPECT_EQ(hit.id, 0);
         EXPECT_NEAR(hit.depth, 9, 1e-4);
