@@ -83,8 +83,7 @@ VKRAY_CONST(uint, DOUBLE_RAY_TASK_TEXELS, 6u);  // GpuDoubleRayTask: a dvec4 is 
 // A walk's pending nodes: one a level but the leaf's, for the object BVH
 // joined to the world triangles' (kMaxBvhDepth + 1 levels, host/gpu/gpu_scene.cpp).
 VKRAY_CONST(uint, BVH_STACK_SIZE, 48u);
-VKRAY_CONST(uint, CSG_MAX_SPANS, 8u);    // inside-spans per CSG list
-VKRAY_CONST(uint, CSG_MAX_STACK, 4u);    // CSG lists alive at once while evaluating a tree
+VKRAY_CONST(uint, CSG_MAX_LEAVES, 32u);  // primitives of a CSG tree: one bit of a word each
 VKRAY_CONST(uint, MAX_RECURSION_DEPTH, 64u);  // maxRecursionDepth (kMaxRecursionDepth on the host)
 VKRAY_CONST(uint, MEDIUM_STACK_SIZE, 4u);    // nested transparent objects a ray remembers
 
@@ -180,15 +179,17 @@ struct GpuTriangle {
 // first in the triangle array, object by object, each in its mesh's leaf
 // order (host/gpu/gpu_scene.cpp).
 
-// CSG trees in post order: a leaf pushes its primitive's inside-spans, an
-// operator combines the two lists on top. Primitives are objects stored
-// after the scene's objects (index >= object count).
+// CSG trees in post order: a leaf pushes whether the ray is inside its
+// primitive, an operator combines the two on top (shapes/csg.glsl).
+// Primitives are objects stored after the scene's objects (index >= object
+// count).
 VKRAY_CONST(uint, CSG_LEAF, 0u);
 VKRAY_CONST(uint, CSG_UNION, 1u);
 VKRAY_CONST(uint, CSG_INTERSECTION, 2u);
 VKRAY_CONST(uint, CSG_DIFFERENCE, 3u);
 struct GpuCsgNode {
-    uvec4 node;  // x = CSG_*; y = leaf: primitive object index; z = tree's node count (root only)
+    uvec4 node;  // x = CSG_*; y = leaf: primitive object index; z = tree's node count (root only);
+                 // w = leaf: 1 where its normals turn (subtracted in an odd number of differences)
 };
 
 // One decoded `makePixmap` image: its rgb texels, row 0 at the top, start at

@@ -151,14 +151,8 @@ bool isConvex(const TriangleMesh& mesh) {
     return true;
 }
 
-// The most inside-spans a CSG operand's list can hold along one ray, and the
-// span lists alive at once while evaluating it; checked against the shader's
-// fixed arrays.
-struct CsgNeeds {
-    uint spans;
-    uint stack;
-};
-
+// Packs boolean trees as GpuCsgNodes in post order, their primitives as
+// objects after the scene's own.
 class CsgPacker {
 public:
     CsgPacker(const Scene& scene, GpuScene& packed) : scene_(scene), packed_(packed) {}
@@ -166,61 +160,58 @@ public:
     // Packs the tree of boolean `object`; returns its first node's index.
     uint pack(const SceneObject& object) {
         const uint first = uint(packed_.csgNodes.size());
-        const CsgNeeds needs = emit(object, object);
-        if (needs.spans > CSG_MAX_SPANS || needs.stack > CSG_MAX_STACK)
-            throw Error(located(
-                object,
-                std::string("this '") + shapeKeyword(object.type) + "' needs up to " +
-                    std::to_string(needs.spans) + " spans and " + std::to_string(needs.stack) +
-                    " lists per ray; the GPU holds " + std::to_string(CSG_MAX_SPANS) + " and " +
-                    std::to_string(CSG_MAX_STACK) + " (simplify the tree or render with --cpu)"));
+        const uint leaves = emit(object, object, false);
+        if (leaves > CSG_MAX_LEAVES)
+            throw Error(located(object, std::string("this '") + shapeKeyword(object.type) +
+                                            "' has " + std::to_string(leaves) +
+                                            " primitives; the GPU evaluates trees of at most " +
+                                            std::to_string(CSG_MAX_LEAVES) +
+                                            " (split the tree or render with --cpu)"));
         packed_.csgNodes[first].node.z = uint(packed_.csgNodes.size()) - first;
         return first;
     }
 
 private:
-    CsgNeeds emit(const SceneObject& node, const SceneObject& root) {
+    // Emits `node`'s subtree in post order; returns its primitives. `turned`:
+    // the subtree is subtracted in an odd number of differences, so its
+    // surfaces bound the result from outside them.
+    uint emit(const SceneObject& node, const SceneObject& root, bool turned) {
         if (isBoolean(node.type)) {
-            const CsgNeeds a = emit(node.operands.at(0), root);
-            const CsgNeeds b = emit(node.operands.at(1), root);
+            const uint a = emit(node.operands.at(0), root, turned);
+            const uint b =
+                emit(node.operands.at(1), root, turned != (node.type == ShapeType::Difference));
             const uint op = node.type == ShapeType::Union          ? CSG_UNION
                             : node.type == ShapeType::Intersection ? CSG_INTERSECTION
                                                                    : CSG_DIFFERENCE;
             packed_.csgNodes.push_back({{op, 0, 0, 0}});
-            return {a.spans + b.spans, std::max(a.stack, b.stack + 1)};
+            return a + b;
         }
-        const uint spans = leafSpans(node, root);
-        packed_.csgNodes.push_back({{CSG_LEAF, uint(packed_.objects.size()), 0, 0}});
+        requireInside(node, root);
+        packed_.csgNodes.push_back({{CSG_LEAF, uint(packed_.objects.size()), 0, turned ? 1u : 0u}});
         const PackedObject primitive = packObject(scene_, node);
         packed_.objects.push_back(primitive.geometry);
         packed_.materials.push_back(primitive.material);
         packed_.doubleObjects.push_back(packDoubleObject(node));
-        return {spans, 1};
+        return 1;
     }
 
-    uint leafSpans(const SceneObject& leaf, const SceneObject& root) {
+    // Refuses an operand without an inside, and a mesh whose spans the GPU's
+    // first and last crossing would not give (a concave one).
+    void requireInside(const SceneObject& leaf, const SceneObject& root) {
         const std::string op = shapeKeyword(root.type);
-        switch (gpuKindOf(leaf.type)) {
-        case KIND_SQUARE:
+        if (gpuKindOf(leaf.type) == KIND_SQUARE)
             throw Error(
                 located(leaf, "'square' has no inside and cannot be an operand of '" + op + "'"));
-        case KIND_TORUS: return 2;
-        case KIND_TAPERED_CYLINDER: return leaf.taper < 0 ? 2 : 1;  // an hourglass: two
-        case KIND_MESH: {
-            const TriangleMesh& mesh = *scene_.meshes.at(size_t(leaf.mesh));
-            if (!mesh.closed)
-                throw Error(
-                    located(leaf, "'" + std::string(shapeKeyword(leaf.type)) +
-                                      "' is not a closed surface and cannot be an operand of '" +
-                                      op + "'"));
-            if (!isConvex(mesh))
-                throw Error(located(leaf, "'" + std::string(shapeKeyword(leaf.type)) +
-                                              "' is not convex; the GPU takes only convex meshes "
-                                              "in CSG (render with --cpu)"));
-            return 1;
-        }
-        default: return 1;  // sphere, cube, plane (a half-space)
-        }
+        if (gpuKindOf(leaf.type) != KIND_MESH) return;
+        const TriangleMesh& mesh = *scene_.meshes.at(size_t(leaf.mesh));
+        if (!mesh.closed)
+            throw Error(located(
+                leaf, "'" + std::string(shapeKeyword(leaf.type)) +
+                          "' is not a closed surface and cannot be an operand of '" + op + "'"));
+        if (!isConvex(mesh))
+            throw Error(located(leaf, "'" + std::string(shapeKeyword(leaf.type)) +
+                                          "' is not convex; the GPU takes only convex meshes "
+                                          "in CSG (render with --cpu)"));
     }
 
     const Scene& scene_;

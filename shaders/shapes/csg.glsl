@@ -1,68 +1,68 @@
-// CSG by ray interval lists (Hill ch. 14): each primitive gives the spans of
-// t where the ray is inside it; union, intersection and difference combine
-// the lists; the hit is the first span end after tMin. Lists hold at most
-// CSG_MAX_SPANS spans and at most CSG_MAX_STACK lists are alive at once; the
-// host refuses trees that could need more (host/gpu/gpu_scene.cpp).
+// CSG by ray intervals (Hill ch. 14), swept without lists: each primitive
+// gives the spans of t where the ray is inside it; the tree's inside-ness is
+// a boolean function of which primitives the ray is inside. From tMin the
+// sweep steps to the nearest primitive surface ahead, takes every primitive
+// that changes there together, and stops where the tree's inside-ness
+// changes: that surface is the hit. Nothing per ray is kept in an array (on
+// lavapipe an array indexed at run time lives in memory, written a lane at a
+// time): the primitives' inside flags are the bits of one word, and the tree
+// is evaluated on them with a stack of bits in another. Each step tests every
+// primitive again; a step passes one end of one primitive's spans at least,
+// so a tree of n primitives takes at most 4n steps. The host keeps trees to
+// CSG_MAX_LEAVES primitives (host/gpu/gpu_scene.cpp).
 layout(set = 0, binding = BINDING_CSG_NODES, rgba32ui) uniform readonly uimageBuffer csgNodeTexels;
 
 // GpuCsgNode[index].node.
 uvec4 csgNode(uint index) { return imageLoad(csgNodeTexels, int(index)); }
 
-// The span lists live in a pool of slots, each end's fields in an array of
-// its own: lavapipe keeps an array indexed at run time in memory and writes
-// each word of it in a loop over the lanes, so a list is written once, where
-// it is made, never copied (a whole list is 81 words). The evaluation's
-// stack holds slot numbers; one slot more than the stack's depth takes a
-// combination's result.
-const uint CSG_SLOTS = CSG_MAX_STACK + 1u;
-const uint CSG_SLOT_ENDS = 2u * CSG_MAX_SPANS;  // in, out, in, out, ... ascending
-real csgEndT[CSG_SLOTS * CSG_SLOT_ENDS];
-rvec3 csgEndNormal[CSG_SLOTS * CSG_SLOT_ENDS];  // generic outward normal of the primitive, negated when flipped
-uint csgEndPrimitive[CSG_SLOTS * CSG_SLOT_ENDS];  // object index
-uint csgSpanCount[CSG_SLOTS];
-
 const real CSG_INFINITY = 1.0 / 0.0;
 
-void setCsgEnd(uint at, real t, rvec3 normal, uint primitive) {
-    csgEndT[at] = t;
-    csgEndNormal[at] = normal;
-    csgEndPrimitive[at] = primitive;
-}
+// A primitive's inside-spans along the whole line origin + t direction:
+// at most two, [t0, t1] and [t2, t3], with the generic outward normals at
+// their ends; +inf where it has fewer.
+struct CsgSpans {
+    real t0, t1, t2, t3;
+    rvec3 n0, n1, n2, n3;
+};
 
-// The inside-spans of primitive `index` along the whole line origin + t
-// direction into slot `slot`: at most two, found in registers, then written
-// by one piece of code whatever the shape.
-void primitiveSpans(uint index, rvec3 origin, rvec3 direction, uint slot) {
+CsgSpans primitiveSpans(uint index, rvec3 origin, rvec3 direction) {
     rvec3 o, d;
     toObjectSpace(index, origin, direction, o, d);
     uvec4 shape = objectShape(index);
     uint spans = 0u;
-    real t0 = CSG_INFINITY, t1 = CSG_INFINITY, t2 = CSG_INFINITY, t3 = CSG_INFINITY;
-    rvec3 n0 = rvec3(0.0), n1 = rvec3(0.0), n2 = rvec3(0.0), n3 = rvec3(0.0);
+    CsgSpans s;
+    s.t0 = CSG_INFINITY;
+    s.t1 = CSG_INFINITY;
+    s.t2 = CSG_INFINITY;
+    s.t3 = CSG_INFINITY;
+    s.n0 = rvec3(0.0);
+    s.n1 = rvec3(0.0);
+    s.n2 = rvec3(0.0);
+    s.n3 = rvec3(0.0);
     switch (shape.x) {
 #if VKRAY_SHAPE_SPHERE
-    case KIND_SPHERE: spans = sphereSpan(o, d, t0, n0, t1, n1) ? 1u : 0u; break;
+    case KIND_SPHERE: spans = sphereSpan(o, d, s.t0, s.n0, s.t1, s.n1) ? 1u : 0u; break;
 #endif
 #if VKRAY_SHAPE_CUBE
-    case KIND_CUBE: spans = cubeSpan(o, d, t0, n0, t1, n1) ? 1u : 0u; break;
+    case KIND_CUBE: spans = cubeSpan(o, d, s.t0, s.n0, s.t1, s.n1) ? 1u : 0u; break;
 #endif
 #if VKRAY_SHAPE_PLANE
     case KIND_PLANE: {  // the generic plane as a solid: the half-space z <= 0
         rvec3 up = rvec3(0.0, 0.0, 1.0);
         if (d.z == 0.0) {
             spans = o.z <= 0.0 ? 1u : 0u;
-            t0 = -CSG_INFINITY;
-            n0 = -up;
-            t1 = CSG_INFINITY;
-            n1 = up;
+            s.t0 = -CSG_INFINITY;
+            s.n0 = -up;
+            s.t1 = CSG_INFINITY;
+            s.n1 = up;
             break;
         }
         real t = -o.z / d.z;
         spans = 1u;
-        t0 = d.z > 0.0 ? -CSG_INFINITY : t;  // leaves upward, or enters downward
-        n0 = d.z > 0.0 ? -up : up;
-        t1 = d.z > 0.0 ? t : CSG_INFINITY;
-        n1 = up;
+        s.t0 = d.z > 0.0 ? -CSG_INFINITY : t;  // leaves upward, or enters downward
+        s.n0 = d.z > 0.0 ? -up : up;
+        s.t1 = d.z > 0.0 ? t : CSG_INFINITY;
+        s.n1 = up;
         break;
     }
 #endif
@@ -70,14 +70,14 @@ void primitiveSpans(uint index, rvec3 origin, rvec3 direction, uint slot) {
     case KIND_TAPERED_CYLINDER: {  // an hourglass (s < 0) may give two spans
         TaperedSpans tapered = taperedCylinderSpans(o, d, taperOf(index));
         spans = uint(tapered.count);
-        t0 = tapered.t0;
-        t1 = tapered.t1;
-        t2 = tapered.t2;
-        t3 = tapered.t3;
-        n0 = tapered.n0;
-        n1 = tapered.n1;
-        n2 = tapered.n2;
-        n3 = tapered.n3;
+        s.t0 = tapered.t0;
+        s.t1 = tapered.t1;
+        s.t2 = tapered.t2;
+        s.t3 = tapered.t3;
+        s.n0 = tapered.n0;
+        s.n1 = tapered.n1;
+        s.n2 = tapered.n2;
+        s.n3 = tapered.n3;
         break;
     }
 #endif
@@ -85,34 +85,61 @@ void primitiveSpans(uint index, rvec3 origin, rvec3 direction, uint slot) {
     case KIND_TORUS: {
         TorusCrossings crossings = torusCrossings(o, d);
         spans = uint(crossings.count) / 2u;
-        t0 = crossings.t.x;
-        t1 = crossings.t.y;
-        t2 = crossings.t.z;
-        t3 = crossings.t.w;
-        n0 = crossings.n0;
-        n1 = crossings.n1;
-        n2 = crossings.n2;
-        n3 = crossings.n3;
+        s.t0 = crossings.t.x;
+        s.t1 = crossings.t.y;
+        s.t2 = crossings.t.z;
+        s.t3 = crossings.t.w;
+        s.n0 = crossings.n0;
+        s.n1 = crossings.n1;
+        s.n2 = crossings.n2;
+        s.n3 = crossings.n3;
         break;
     }
 #endif
 #if VKRAY_SHAPE_MESH
     case KIND_MESH:  // convex closed meshes only (the host checks): first and last crossing
-        spans = meshSpan(shape.y, o, d, t0, n0, t1, n1) ? 1u : 0u;
+        spans = meshSpan(shape.y, o, d, s.t0, s.n0, s.t1, s.n1) ? 1u : 0u;
         break;
 #endif
     default: break;
     }
-    uint at = slot * CSG_SLOT_ENDS;
-    if (spans > 0u) {
-        setCsgEnd(at, t0, n0, index);
-        setCsgEnd(at + 1u, t1, n1, index);
+    if (spans < 1u) {
+        s.t0 = CSG_INFINITY;
+        s.t1 = CSG_INFINITY;
     }
-    if (spans > 1u) {
-        setCsgEnd(at + 2u, t2, n2, index);
-        setCsgEnd(at + 3u, t3, n3, index);
+    if (spans < 2u) {
+        s.t2 = CSG_INFINITY;
+        s.t3 = CSG_INFINITY;
     }
-    csgSpanCount[slot] = spans;
+    return s;
+}
+
+// Inside just after t: within a span of positive length, its start included
+// (an end where another span starts leaves the ray inside; a tangent, a span
+// of length 0, changes nothing).
+bool insideAfter(CsgSpans s, real t) {
+    return (s.t0 <= t && t < s.t1) || (s.t2 <= t && t < s.t3);
+}
+
+// The nearest span end beyond t, and its normal.
+void nextEnd(CsgSpans s, real t, inout real at, inout rvec3 normal) {
+    at = CSG_INFINITY;
+    if (s.t3 > t) {
+        at = s.t3;
+        normal = s.n3;
+    }
+    if (s.t2 > t && s.t2 <= at) {
+        at = s.t2;
+        normal = s.n2;
+    }
+    if (s.t1 > t && s.t1 <= at) {
+        at = s.t1;
+        normal = s.n1;
+    }
+    if (s.t0 > t && s.t0 <= at) {
+        at = s.t0;
+        normal = s.n0;
+    }
 }
 
 bool insideOf(uint op, bool inA, bool inB) {
@@ -121,74 +148,85 @@ bool insideOf(uint op, bool inA, bool inB) {
     return inA && !inB;  // CSG_DIFFERENCE
 }
 
-// Merges the span ends of slots a and b in t order into slot `result`,
-// keeping the ends where the combination's inside-ness changes: each is
-// written as it comes (a kept span's start when the result goes in, its end
-// when it comes out), one end a turn, the code of one write. In a
-// difference, b's surface bounds the result from outside b, so its normals
-// turn around.
-void combine(uint op, uint a, uint b, uint result) {
-    uint i = 0u, j = 0u, count = 0u;
-    bool inA = false, inB = false, inside = false;
-    uint endsA = 2u * csgSpanCount[a], endsB = 2u * csgSpanCount[b];
-    uint baseA = a * CSG_SLOT_ENDS, baseB = b * CSG_SLOT_ENDS, baseResult = result * CSG_SLOT_ENDS;
-    while (i < endsA || j < endsB) {
+// Whether the tree (post-order nodes from `first`) is inside with the
+// primitives `inside` (bit k: the k-th leaf), and with `other` too: two
+// stacks of bits, the top in bit 0.
+void treeInside(uint first, uint nodeCount, uint inside, uint other, out bool a, out bool b) {
+    uint stack = 0u, otherStack = 0u, leaf = 0u;
+    for (uint i = first; i < first + nodeCount; ++i) {
         ++loopTurns;
-        bool fromA = j >= endsB || (i < endsA && csgEndT[baseA + i] <= csgEndT[baseB + j]);
-        uint end = fromA ? baseA + i : baseB + j;
-        bool flipped = !fromA && op == CSG_DIFFERENCE;
-        if (fromA) {
-            inA = !inA;
-            ++i;
+        uint op = csgNode(i).x;
+        if (op == CSG_LEAF) {
+            stack = (stack << 1u) | ((inside >> leaf) & 1u);
+            otherStack = (otherStack << 1u) | ((other >> leaf) & 1u);
+            ++leaf;
         } else {
-            inB = !inB;
-            ++j;
+            uint combined = uint(insideOf(op, (stack & 2u) != 0u, (stack & 1u) != 0u));
+            uint otherCombined =
+                uint(insideOf(op, (otherStack & 2u) != 0u, (otherStack & 1u) != 0u));
+            stack = ((stack >> 2u) << 1u) | combined;
+            otherStack = ((otherStack >> 2u) << 1u) | otherCombined;
         }
-        bool now = insideOf(op, inA, inB);
-        if (now != inside && count < CSG_MAX_SPANS) {
-            setCsgEnd(baseResult + 2u * count + (now ? 0u : 1u), csgEndT[end],
-                      flipped ? -csgEndNormal[end] : csgEndNormal[end], csgEndPrimitive[end]);
-            if (!now) count++;
-        }
-        inside = now;
     }
-    csgSpanCount[result] = count;
+    a = (stack & 1u) != 0u;
+    b = (otherStack & 1u) != 0u;
 }
 
 // The nearest surface in (tMin, tMax) of the CSG tree whose post-order nodes
-// start at GpuCsgNode `first` (that node's z holds the tree's node count),
-// evaluated with a stack of span lists.
+// start at GpuCsgNode `first` (that node's z holds the tree's node count; a
+// leaf's w is 1 where its normals turn around: it lies on the subtracted side
+// of an odd number of differences).
 bool intersectCsg(uint first, rvec3 origin, rvec3 direction, real tMin, real tMax, out real t,
                   out rvec3 genericNormal, out uint primitive) {
-    // The stack's slots, and the one it does not hold: a permutation of them all.
-    uint stackSlot[CSG_MAX_STACK];
-    for (uint k = 0u; k < CSG_MAX_STACK; ++k) stackSlot[k] = k;
-    uint spare = CSG_MAX_STACK;
-    uint top = 0u;
+    t = CSG_INFINITY;
+    genericNormal = rvec3(0.0);
+    primitive = 0u;
     uint nodeCount = csgNode(first).z;
-    for (uint i = first; i < first + nodeCount; ++i) {
-        ++loopTurns;
-        uvec4 node = csgNode(i);
-        if (node.x == CSG_LEAF) {
-            primitiveSpans(node.y, origin, direction, stackSlot[top++]);
-        } else {
-            uint a = stackSlot[top - 2u], b = stackSlot[top - 1u];
-            combine(node.x, a, b, spare);
-            stackSlot[top - 2u] = spare;
-            spare = a;
-            --top;
+    real now = tMin;
+    for (uint step = 0u; step <= 4u * nodeCount; ++step) {
+        uint inside = 0u;    // the leaves the ray is inside just after `now`
+        uint changing = 0u;  // those whose inside-ness changes at `next`
+        real next = CSG_INFINITY;
+        rvec3 nextNormal = rvec3(0.0);
+        uint nextPrimitive = 0u;
+        bool found = false;  // a changing leaf at `next` gave the normal
+        uint bit = 1u;
+        for (uint i = first; i < first + nodeCount; ++i) {
+            ++loopTurns;
+            uvec4 node = csgNode(i);
+            if (node.x != CSG_LEAF) continue;
+            CsgSpans s = primitiveSpans(node.y, origin, direction);
+            bool inNow = insideAfter(s, now);
+            real end;
+            rvec3 normal = rvec3(0.0);
+            nextEnd(s, now, end, normal);
+            bool changes = insideAfter(s, end) != inNow;
+            if (end < next) {
+                next = end;
+                changing = 0u;
+                found = false;
+            }
+            if (end == next && changes) {
+                changing |= bit;
+                if (!found) {
+                    found = true;
+                    nextNormal = node.w != 0u ? -normal : normal;
+                    nextPrimitive = node.y;
+                }
+            }
+            if (inNow) inside |= bit;
+            bit <<= 1u;
         }
-    }
-    uint result = stackSlot[0] * CSG_SLOT_ENDS;
-    uint ends = 2u * csgSpanCount[stackSlot[0]];
-    for (uint k = result; k < result + ends; ++k) {
-        real at = csgEndT[k];
-        if (at > tMin && at < tMax) {
-            t = at;
-            genericNormal = csgEndNormal[k];
-            primitive = csgEndPrimitive[k];
+        if (!(next < tMax)) return false;
+        bool before, after;
+        treeInside(first, nodeCount, inside, inside ^ changing, before, after);
+        if (before != after) {
+            t = next;
+            genericNormal = nextNormal;
+            primitive = nextPrimitive;
             return true;
         }
+        now = next;
     }
     return false;
 }

@@ -432,5 +432,12 @@ TEST(AgreementRegressions, AMeshCoincidingWithACubeTiesAsInTheReference) {
     }
 }
 
+// A hollow glass ball around a glass core (the file's header says how): a
+// boolean's surfaces bound the glass from the side their normals give, the
+// subtracted ones turned once a difference.
+TEST(AgreementRegressions, RaysThroughAHollowGlassBallChangeMediumAtEverySurface) {
+    expectExplainedInRobustAndFp64("hollow_glass_ball.sdl", {80, 60});
+}
+
 }  // namespace
 }  // namespace vkray

@@ -171,20 +171,42 @@ TEST(GpuShapes, CsgRefusesASquareOperandWithItsPlace) {
     }
 }
 
-TEST(GpuShapes, CsgCountsTwoSpansForAnHourglass) {
-    // Four hourglasses may need 8 spans along a line, as many as a GPU list
-    // holds; five may need 10 and are refused (the host once counted one each).
-    const std::string h = " taperedCylinder -1";
-    const std::string four = "union union" + h + h + " union" + h + h;
-    const CameraBasis camera = makeCameraBasis(Camera{}, 4, 4);
-    EXPECT_NO_THROW(test::renderOnGpu(parseSdl(four, "t.sdl", {}), camera, {4, 4, 1}));
+// A tree's primitives are the bits of one word in the shader: 32 are
+// evaluated (five hourglasses, ten spans along a line, once beyond the GPU's
+// span lists, among them), 33 are refused at the tree's place.
+TEST(GpuShapes, CsgTreesOfUpTo32PrimitivesAreEvaluated) {
+    auto unionOf = [](int count) {
+        std::string sdl = "translate 0 0 -3\n";
+        for (int k = 1; k < count; ++k) sdl += "union ";
+        for (int k = 0; k < count; ++k)
+            sdl += k < 5 ? " taperedCylinder -1"
+                         : " push translate 0 0 -" + std::to_string(k) + " sphere pop";
+        return sdl + "\n";
+    };
+    // Straight down the hourglasses' axis from above: the top one's cap at z = -2.
+    expectHit(traceOne(unionOf(32), {0, 0, 5}, {0, 0, 0}, {0, 1, 0}), 0, 7.0, {0, 0, 1});
     try {
-        test::renderOnGpu(parseSdl("union " + four + h, "t.sdl", {}), camera, {4, 4, 1});
+        test::renderOnGpu(parseSdl(unionOf(33), "t.sdl", {}), makeCameraBasis(Camera{}, 4, 4),
+                          {4, 4, 1});
         FAIL() << "expected an error";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("'union' needs up to 10 spans"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("t.sdl:2:1: error: this 'union' has 33 primitives"),
+                  std::string::npos)
             << e.what();
     }
+}
+
+// A primitive subtracted twice bounds the result from its inside again: in
+// a shell of radii 2 to 3 around a ball of radius 1 (the ball subtracted
+// from the hollow, the hollow from the shell), a ray from the gap meets the
+// ball's surface, whose normal faces it without turning.
+TEST(GpuShapes, CsgNormalsTurnOncePerDifferenceTheyAreSubtractedIn) {
+    const std::string shell =
+        "difference push scale 3 3 3 sphere pop difference push scale 2 2 2 sphere pop sphere";
+    expectHit(traceOne(shell, {0, 0, -1.5}, {0, 0, 0}, {0, 1, 0}), 0, 0.5, {0, 0, -1});
+    expectHit(traceOne(shell, {0, 0, 1.5}, {0, 0, 0}, {0, 1, 0}), 0, 0.5, {0, 0, 1});
+    // From the gap outward: the hollow's wall, its normal turned inward.
+    expectHit(traceOne(shell, {0, 0, 1.5}, {0, 0, 5}, {0, 1, 0}), 0, 0.5, {0, 0, -1});
 }
 
 // A walk keeps the CSG objects it meets in a list of 8 and tests them after
