@@ -180,16 +180,17 @@ struct GpuTriangle {
 // order (host/gpu/gpu_scene.cpp).
 
 // CSG trees in post order: a leaf pushes whether the ray is inside its
-// primitive, an operator combines the two on top (shapes/csg.glsl).
-// Primitives are objects stored after the scene's objects (index >= object
-// count).
+// primitive, an operator combines the two on top (shapes/csg.glsl). The
+// tree's leaves follow it again, in the same order. Primitives are objects
+// stored after the scene's objects (index >= object count).
 VKRAY_CONST(uint, CSG_LEAF, 0u);
 VKRAY_CONST(uint, CSG_UNION, 1u);
 VKRAY_CONST(uint, CSG_INTERSECTION, 2u);
 VKRAY_CONST(uint, CSG_DIFFERENCE, 3u);
 struct GpuCsgNode {
-    uvec4 node;  // x = CSG_*; y = leaf: primitive object index; z = tree's node count (root only);
-                 // w = leaf: 1 where its normals turn (subtracted in an odd number of differences)
+    uvec4 node;  // x = CSG_*; y = leaf: primitive object index; root: z = the tree's node count,
+                 // w = its leaf count; leaf: w = 1 where its normals turn (it is subtracted in an
+                 // odd number of differences)
 };
 
 // One decoded `makePixmap` image: its rgb texels, row 0 at the top, start at

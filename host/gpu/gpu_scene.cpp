@@ -151,8 +151,10 @@ bool isConvex(const TriangleMesh& mesh) {
     return true;
 }
 
-// Packs boolean trees as GpuCsgNodes in post order, their primitives as
-// objects after the scene's own.
+// Packs boolean trees as GpuCsgNodes in post order, each followed by its
+// leaves again, in the same order (the shader's loop over the primitives
+// then turns once a primitive, not once a node); the primitives are objects
+// after the scene's own.
 class CsgPacker {
 public:
     CsgPacker(const Scene& scene, GpuScene& packed) : scene_(scene), packed_(packed) {}
@@ -168,6 +170,9 @@ public:
                                             std::to_string(CSG_MAX_LEAVES) +
                                             " (split the tree or render with --cpu)"));
         packed_.csgNodes[first].node.z = uint(packed_.csgNodes.size()) - first;
+        packed_.csgNodes[first].node.w = leaves;
+        packed_.csgNodes.insert(packed_.csgNodes.end(), leaves_.begin(), leaves_.end());
+        leaves_.clear();
         return first;
     }
 
@@ -187,7 +192,9 @@ private:
             return a + b;
         }
         requireInside(node, root);
-        packed_.csgNodes.push_back({{CSG_LEAF, uint(packed_.objects.size()), 0, turned ? 1u : 0u}});
+        const GpuCsgNode leaf{{CSG_LEAF, uint(packed_.objects.size()), 0, turned ? 1u : 0u}};
+        packed_.csgNodes.push_back(leaf);
+        leaves_.push_back(leaf);
         const PackedObject primitive = packObject(scene_, node);
         packed_.objects.push_back(primitive.geometry);
         packed_.materials.push_back(primitive.material);
@@ -216,6 +223,7 @@ private:
 
     const Scene& scene_;
     GpuScene& packed_;
+    std::vector<GpuCsgNode> leaves_;  // the tree's leaves in order, copied after its nodes
 };
 
 void packMeshes(const Scene& scene, GpuScene& packed) {

@@ -173,17 +173,16 @@ void treeInside(uint first, uint nodeCount, uint inside, uint other, out bool a,
 }
 
 // The nearest surface in (tMin, tMax) of the CSG tree whose post-order nodes
-// start at GpuCsgNode `first` (that node's z holds the tree's node count; a
-// leaf's w is 1 where its normals turn around: it lies on the subtracted side
-// of an odd number of differences).
+// start at GpuCsgNode `first`, its leaves after them (layout.h).
 bool intersectCsg(uint first, rvec3 origin, rvec3 direction, real tMin, real tMax, out real t,
                   out rvec3 genericNormal, out uint primitive) {
     t = CSG_INFINITY;
     genericNormal = rvec3(0.0);
     primitive = 0u;
-    uint nodeCount = csgNode(first).z;
+    uvec4 root = csgNode(first);
+    uint nodeCount = root.z, leaves = first + nodeCount, leafEnd = leaves + root.w;
     real now = tMin;
-    for (uint step = 0u; step <= 4u * nodeCount; ++step) {
+    for (uint step = 0u; step <= 4u * root.w; ++step) {
         uint inside = 0u;    // the leaves the ray is inside just after `now`
         uint changing = 0u;  // those whose inside-ness changes at `next`
         real next = CSG_INFINITY;
@@ -191,10 +190,9 @@ bool intersectCsg(uint first, rvec3 origin, rvec3 direction, real tMin, real tMa
         uint nextPrimitive = 0u;
         bool found = false;  // a changing leaf at `next` gave the normal
         uint bit = 1u;
-        for (uint i = first; i < first + nodeCount; ++i) {
+        for (uint i = leaves; i < leafEnd; ++i) {
             ++loopTurns;
             uvec4 node = csgNode(i);
-            if (node.x != CSG_LEAF) continue;
             CsgSpans s = primitiveSpans(node.y, origin, direction);
             bool inNow = insideAfter(s, now);
             real end;
