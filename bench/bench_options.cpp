@@ -78,10 +78,13 @@ BenchOptions parseBenchOptions(const std::vector<std::string>& args, const Bench
            [&o](const std::string& v) { parseSize("--all-size", v, o.allWidth, o.allHeight); },
            "the all-features variant's image size (default: --size)")
         ->type_name("WxH");
-    bool noAll = false, noCpu = false, noEmbree = false, noFma = false;
+    bool noAll = false, noCpu = false, noEmbree = false, noFma = false, noRayQuery = false;
     app.add_flag("--no-all", noAll, "leave out the all-features variant");
     app.add_flag("--no-cpu", noCpu, "leave out the CPU reference");
     app.add_flag("--no-embree", noEmbree, "leave out Embree");
+    app.add_flag("--no-ray-query", noRayQuery,
+                 "leave out the GPU's ray-query traversal (--traversal rayquery; only where the "
+                 "device has ray queries)");
     app.add_flag("--no-fma", noFma, "leave out the FMA peak");
     app.add_flag("--shaded", o.shaded,
                  "keep the scenes' lights and secondary rays (default: primary "
@@ -109,6 +112,7 @@ BenchOptions parseBenchOptions(const std::vector<std::string>& args, const Bench
     o.all = !noAll;
     o.cpu = !noCpu;
     o.embree = !noEmbree;
+    o.rayQuery = !noRayQuery;
     o.fma = !noFma;
     o.onlyExperiments = o.onlyExperiments || !o.againstDirectory.empty();
     o.experiments = o.experiments || o.onlyExperiments;

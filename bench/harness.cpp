@@ -213,7 +213,16 @@ Timing timed(F&& work) {
 }
 
 // The engines of the table, in its column order.
-enum Engine { kGpu, kGpuEveryGroup, kAllFeatures, kCpuReference, kEmbree1, kEmbree8, kEngines };
+enum Engine {
+    kGpu,
+    kGpuEveryGroup,
+    kAllFeatures,
+    kCpuReference,
+    kEmbree1,
+    kEmbree8,
+    kGpuRayQuery,  // the specialised variant with --traversal rayquery
+    kEngines
+};
 
 struct Row {
     std::string name, description, variant;
@@ -230,6 +239,10 @@ struct Row {
     // The specialised variant's best device time (timestamp queries) and the
     // wall clock of that render: none where the queue has no timestamps.
     std::optional<double> gpuDevice, gpuDeviceWall;
+    // The ray-query traversal: its acceleration structure's build (within
+    // its preparation), and whether its ids equal the own walk's.
+    std::optional<double> structureBuild;
+    std::string idsRayQuery = "-";
 };
 
 // The rays of the big image and of the all-features variant's small one.
@@ -280,8 +293,9 @@ std::string seconds(const std::optional<Timing>& time) {
 void printTable(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
     std::printf(
         "| scene | objects | variant | GPU | GPU, every workgroup | all-features | CPU ref "
-        "| Embree 1 | Embree 8 | GPU/all | GPU/CPU | every workgroup/CPU | GPU/Embree "
-        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+        "| Embree 1 | Embree 8 | GPU, ray query | GPU/all | GPU/CPU | every workgroup/CPU | "
+        "GPU/Embree | ray query/GPU |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+        "\n");
     for (const Row& r : rows) {
         if (!r.refused.empty()) {
             std::printf("| %s | %zu | refused: %s |\n", r.description.c_str(), r.objects,
@@ -290,14 +304,16 @@ void printTable(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
         }
         std::optional<double> m[kEngines];
         for (int e = 0; e < kEngines; ++e) m[e] = mrays(r, Engine(e), rays, cpuTime);
-        std::printf("| %s | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
-                    r.description.c_str(), r.objects, r.variant.c_str(), rate(m[kGpu]).c_str(),
-                    rate(m[kGpuEveryGroup]).c_str(), rate(m[kAllFeatures]).c_str(),
-                    rate(m[kCpuReference]).c_str(), rate(m[kEmbree1]).c_str(),
-                    rate(m[kEmbree8]).c_str(), rate(specialisedOverAll(r, rays, cpuTime)).c_str(),
-                    ratio(m[kGpu], m[kCpuReference]).c_str(),
-                    ratio(m[kGpuEveryGroup], m[kCpuReference]).c_str(),
-                    rate(over(m[kGpu], embreeBest(r, rays, cpuTime))).c_str());
+        std::printf(
+            "| %s | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+            r.description.c_str(), r.objects, r.variant.c_str(), rate(m[kGpu]).c_str(),
+            rate(m[kGpuEveryGroup]).c_str(), rate(m[kAllFeatures]).c_str(),
+            rate(m[kCpuReference]).c_str(), rate(m[kEmbree1]).c_str(), rate(m[kEmbree8]).c_str(),
+            rate(m[kGpuRayQuery]).c_str(), rate(specialisedOverAll(r, rays, cpuTime)).c_str(),
+            ratio(m[kGpu], m[kCpuReference]).c_str(),
+            ratio(m[kGpuEveryGroup], m[kCpuReference]).c_str(),
+            rate(over(m[kGpu], embreeBest(r, rays, cpuTime))).c_str(),
+            ratio(m[kGpuRayQuery], m[kGpu]).c_str());
     }
 }
 
@@ -305,13 +321,16 @@ void printTable(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
 // ratio over both together.
 void printPreparation(const std::vector<Row>& rows, RayCounts rays) {
     std::printf(
-        "| scene | GPU preparation s | CPU ref preparation s | Embree build s | GPU/CPU, "
-        "preparation + trace, per CPU-s | the same, wall |\n|---|---|---|---|---|---|\n");
+        "| scene | GPU preparation s | CPU ref preparation s | Embree build s | ray query "
+        "preparation s (its structure's build) | GPU/CPU, preparation + trace, per CPU-s | the "
+        "same, wall |\n|---|---|---|---|---|---|---|\n");
     for (const Row& r : rows) {
         if (!r.refused.empty()) continue;
-        std::printf("| %s | %s | %s | %s | %s | %s |\n", r.description.c_str(),
+        std::string rayQuery = seconds(r.prepare[kGpuRayQuery]);
+        if (r.structureBuild) rayQuery += " (" + seconds(Timing{*r.structureBuild, 0}) + ")";
+        std::printf("| %s | %s | %s | %s | %s | %s | %s |\n", r.description.c_str(),
                     seconds(r.prepare[kGpu]).c_str(), seconds(r.prepare[kCpuReference]).c_str(),
-                    seconds(r.prepare[kEmbree8]).c_str(),
+                    seconds(r.prepare[kEmbree8]).c_str(), rayQuery.c_str(),
                     rate(over(mraysWithPreparation(r, kGpu, rays, true),
                               mraysWithPreparation(r, kCpuReference, rays, true)))
                         .c_str(),
@@ -361,9 +380,9 @@ void printRandomSummary(const std::vector<Row>& rows, RayCounts rays, const Opti
         o.randomScenes, o.width, o.height);
     std::printf("| ratio | min | median | max | scenes |\n|---|---|---|---|---|\n");
     int refused = 0;
-    Spread spreads[2][8];
+    Spread spreads[2][10];
     for (bool shaded : {false, true}) {
-        std::vector<double> figures[8];
+        std::vector<double> figures[10];
         for (const Row& r : rows) {
             if (!r.random || r.shaded != shaded) continue;
             if (!r.refused.empty()) {
@@ -381,19 +400,22 @@ void printRandomSummary(const std::vector<Row>& rows, RayCounts rays, const Opti
                 add(4 + k, over(mraysWithPreparation(r, kGpu, rays, cpuTime),
                                 mraysWithPreparation(r, kCpuReference, rays, cpuTime)));
                 add(6 + k, over(mrays(r, kGpu, rays, cpuTime), embreeBest(r, rays, cpuTime)));
+                add(8 + k, over(mrays(r, kGpuRayQuery, rays, cpuTime), mrays(r, kGpu, rays, cpuTime)));
             }
         }
         const std::string kind = shaded ? "shaded" : "primary";
-        const char* what[8] = {"GPU/CPU ref, per CPU-second",
+        const char* what[10] = {"GPU/CPU ref, per CPU-second",
                                "GPU/CPU ref, wall clock",
                                "GPU every workgroup (no cover)/CPU ref, per CPU-second",
                                "GPU every workgroup (no cover)/CPU ref, wall clock",
                                "GPU/CPU ref, preparation + trace, per CPU-second",
                                "GPU/CPU ref, preparation + trace, wall clock",
                                "GPU/Embree (the faster of 1 and 8), per CPU-second",
-                               "GPU/Embree (the faster of 1 and 8), wall clock"};
-        for (int i = 0; i < 8; ++i) {
-            if (shaded && i >= 6) continue;  // Embree traces primary rays only
+                               "GPU/Embree (the faster of 1 and 8), wall clock",
+                               "GPU ray query/GPU own walk, per CPU-second",
+                               "GPU ray query/GPU own walk, wall clock"};
+        for (int i = 0; i < 10; ++i) {
+            if (shaded && (i == 6 || i == 7)) continue;  // Embree traces primary rays only
             spreads[shaded][i] = spreadOf(figures[i]);
             printSpread((kind + ": " + what[i]).c_str(), spreads[shaded][i]);
         }
@@ -504,6 +526,7 @@ Scene sceneToTrace(const BenchScene& bench, bool shaded) {
 // cull neither peer gets), and the all-features variant.
 struct Tracers {
     gpu::GpuTracer specialised, everyGroup, allFeatures;
+    std::optional<gpu::GpuTracer> rayQuery;  // where the device has ray queries
 };
 
 // One scene, primary or shaded, on every engine.
@@ -523,6 +546,7 @@ Row measure(const BenchScene& bs, bool shaded, Tracers& tracers, const Options& 
     const Precision precision = choosePrecision(scene, basis).precision;
     for (gpu::GpuTracer* t : {&tracers.specialised, &tracers.everyGroup, &tracers.allFeatures})
         t->setPrecision(precision);
+    if (tracers.rayQuery) tracers.rayQuery->setPrecision(precision);
 
     // llvmpipe JIT-compiles a pipeline at its first dispatch: a small
     // warm-up render takes that out of the timed ones.
@@ -537,6 +561,14 @@ Row measure(const BenchScene& bs, bool shaded, Tracers& tracers, const Options& 
         Frame frame =
             tracer.render(scene, makeCameraBasis(camera, size.width, size.height), size, &stats);
         best.keepBest({stats.renderSeconds, stats.renderCpuSeconds});
+        if (engine == kGpuRayQuery) {
+            Timing prepare = row.prepare[kGpuRayQuery].value_or(Timing{});
+            prepare.keepBest({stats.setupSeconds, stats.setupCpuSeconds});
+            row.prepare[kGpuRayQuery] = prepare;
+            row.structureBuild = std::min(row.structureBuild.value_or(1e30), stats.structureSeconds);
+            if (keep && keep->pixelCount() == 0) *keep = std::move(frame);
+            return;
+        }
         if (engine != kGpu) return;
         row.variant = stats.variant + (precision == Precision::Robust
                                            ? std::string()
@@ -559,14 +591,17 @@ Row measure(const BenchScene& bs, bool shaded, Tracers& tracers, const Options& 
     // The specialised variants and the CPU reference take turns, each run of
     // one beside a run of the others, so that a slow spell of the machine (a
     // shared VM's) falls on all and their ratios hold.
-    Frame gpuFrame, cpuFrame;
-    Timing gpuBest, everyGroupBest, cpuBest, cpuPrepare;
+    Frame gpuFrame, cpuFrame, rayQueryFrame;
+    Timing gpuBest, everyGroupBest, rayQueryBest, cpuBest, cpuPrepare;
     try {
         warmUp(tracers.specialised);
         warmUp(tracers.everyGroup);
+        if (tracers.rayQuery) warmUp(*tracers.rayQuery);
         for (int r = 0; r < o.repeat; ++r) {
             gpuRun(tracers.specialised, settings, kGpu, gpuBest, &gpuFrame);
             gpuRun(tracers.everyGroup, settings, kGpuEveryGroup, everyGroupBest, nullptr);
+            if (tracers.rayQuery)
+                gpuRun(*tracers.rayQuery, settings, kGpuRayQuery, rayQueryBest, &rayQueryFrame);
             if (!o.cpu) continue;
             reference::ReferenceStats stats;
             reference::ReferenceOptions options{o.threads};
@@ -581,6 +616,10 @@ Row measure(const BenchScene& bs, bool shaded, Tracers& tracers, const Options& 
     }
     row.time[kGpu] = gpuBest;
     row.time[kGpuEveryGroup] = everyGroupBest;
+    if (tracers.rayQuery) {
+        row.time[kGpuRayQuery] = rayQueryBest;
+        row.idsRayQuery = rayQueryFrame.id == gpuFrame.id ? "same" : "DIFFER";
+    }
     // The all-features variant is tens of times slower on lavapipe
     // (BENCHMARKS.md): --all-size times it on a smaller image of the same
     // view, beside the specialised variant on that image. Not on the random
@@ -782,7 +821,13 @@ int main(int argc, char** argv) {
             gpu::GpuTracer(context,
                            {.shaderDirectory = shaders, .tileSize = o.tile, .primaryCover = false}),
             gpu::GpuTracer(context,
-                           {.shaderDirectory = shaders, .allFeatures = true, .tileSize = o.tile})};
+                           {.shaderDirectory = shaders, .allFeatures = true, .tileSize = o.tile}),
+            std::nullopt};
+        if (o.rayQuery && context.device().rayQuery)
+            tracers.rayQuery.emplace(context, gpu::GpuRenderOptions{
+                                                  .shaderDirectory = shaders,
+                                                  .tileSize = o.tile,
+                                                  .traversal = gpu::Traversal::RayQuery});
         for (const BenchScene& bs : o.scenes) {
             for (bool shaded : bs.random ? std::vector<bool>{false, true} : std::vector{o.shaded}) {
                 rows.push_back(measure(bs, shaded, tracers, o, rays));
@@ -806,11 +851,11 @@ int main(int argc, char** argv) {
         printPreparation(rows, rays);
         std::printf("\nSame rays, same hits: object ids equal to the CPU reference's:\n\n");
         std::printf(
-            "| scene | GPU ids | Embree ids | GPU workgroups traced (the rest meet nothing) "
-            "|\n|---|---|---|---|\n");
+            "| scene | GPU ids | Embree ids | ray query's ids, against the GPU's | GPU workgroups "
+            "traced (the rest meet nothing) |\n|---|---|---|---|---|\n");
         for (const Row& r : rows)
-            std::printf("| %s | %s | %s | %s |\n", r.description.c_str(), r.idsGpu.c_str(),
-                        r.idsEmbree.c_str(), r.groupsTraced.c_str());
+            std::printf("| %s | %s | %s | %s | %s |\n", r.description.c_str(), r.idsGpu.c_str(),
+                        r.idsEmbree.c_str(), r.idsRayQuery.c_str(), r.groupsTraced.c_str());
         std::printf(
             "\nThe specialised variant's time on the device (timestamp queries around each "
             "dispatch; best of %d), against the wall clock of that render (the rest: submits, "

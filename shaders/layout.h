@@ -64,6 +64,7 @@ VKRAY_CONST(uint, BINDING_MATERIALS, 18u); // texels: GpuMaterial[] (read once a
 VKRAY_CONST(uint, BINDING_STRESS_OUTPUT, 19u);  // stress-output variant: buffer GpuStressSample[] (one tile)
 VKRAY_CONST(uint, BINDING_RAY_GROUPS, 20u);  // r32ui texels: the workgroups a dispatch traces (one tile)
 VKRAY_CONST(uint, BINDING_TILE, 21u);        // buffer TileParams: the dispatch's tile and work
+VKRAY_CONST(uint, BINDING_SCENE_STRUCTURE, 22u);  // ray-query variant: the driver's acceleration structure
 
 // The texels (uvec4) of each structure read through a texel buffer, or
 // stored as uvec4s (the pending rays; host/gpu/layout_check.cpp checks each

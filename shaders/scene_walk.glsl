@@ -70,7 +70,8 @@ void testObject(uint index, uint kind, uint shapes, rvec3 origin, rvec3 directio
 // list is tested before the walk goes on. Tori are kept only where other
 // shapes' tests gain from it (VKRAY_KEEP_TORI, host/gpu/shader_variant.cpp):
 // a scene of tori alone would pay the list for nothing (0.87x).
-#define VKRAY_KEPT_OBJECTS (VKRAY_CSG || VKRAY_KEEP_TORI)
+// The ray-query walk has no loop of object tests to keep them out of.
+#define VKRAY_KEPT_OBJECTS ((VKRAY_CSG || VKRAY_KEEP_TORI) && !VKRAY_RAY_QUERY)
 #if VKRAY_KEPT_OBJECTS
 #if VKRAY_KEEP_TORI
 const uint KEPT_SHAPES = (1u << KIND_BOOLEAN) | (1u << KIND_TORUS);
@@ -230,6 +231,53 @@ void testWorldTriangle(uint index, ShearedRay sheared, bool feeler, inout Hit hi
 }
 #endif
 
+#if VKRAY_RAY_QUERY
+layout(set = 0, binding = BINDING_SCENE_STRUCTURE) uniform accelerationStructureEXT sceneStructure;
+
+// Where the driver's walk stops looking, for a walk whose hits reach `far`:
+// a little farther (float, with room for the float ray the driver takes in
+// place of the shader's, in double for fp64), so that it leaves out no box
+// the shader's own test would take.
+float structureReach(real far) {
+    return min(float(far) * (1.0 + 1.0 / 65536.0), 3.0e38);
+}
+
+// walkScene's walk through the driver's acceleration structure (host:
+// gpu/scene_structure.h): the unbounded objects first, then every box the
+// driver's walk reports, its object tested by testObject; a ray's closer hit
+// is handed to the driver, which leaves out the boxes beyond it (with the
+// tie tolerance: reach). A stopped feeler ends the walk.
+void walkStructure(rvec3 origin, rvec3 direction, bool feeler, inout Hit hit, inout float through) {
+    uint unbounded = frame.counts.z;
+    for (uint i = unbounded; i < unbounded + frame.counts.w && through > 0.0; ++i) {
+        ++loopTurns;
+        uint object = objectAt(i);
+        testObject(object, objectShape(object).x, ALL_SHAPES, origin, direction, feeler, hit,
+                   through);
+    }
+    if (!(through > 0.0)) return;
+    float far = structureReach(reach(hit.t, feeler));
+    rayQueryEXT query;
+    rayQueryInitializeEXT(query, sceneStructure, gl_RayFlagsNoneEXT, 0xFFu, vec3(origin), 0.0,
+                          vec3(direction), far);
+    while (rayQueryProceedEXT(query)) {
+        ++loopTurns;
+        uint object = objectAt(uint(rayQueryGetIntersectionPrimitiveIndexEXT(query, false)));
+        testObject(object, objectShape(object).x, ALL_SHAPES, origin, direction, feeler, hit,
+                   through);
+        if (!(through > 0.0)) {
+            rayQueryTerminateEXT(query);
+        } else if (!feeler) {
+            float nearer = structureReach(reach(hit.t, false));
+            if (nearer < far) {
+                far = nearer;
+                rayQueryGenerateIntersectionEXT(query, far);
+            }
+        }
+    }
+}
+#endif
+
 // Every object the ray origin + t direction may meet in (0, tMax), each
 // tested once: for a ray (feeler false, tMax infinite) `hit` ends as the
 // closest hit; for a shadow feeler (tMax = the light's distance) `through`
@@ -258,7 +306,9 @@ void walkScene(rvec3 origin, rvec3 direction, real tMax, bool feeler, uint hint,
 #if VKRAY_KEPT_OBJECTS
     keptObjectCount = 0u;
 #endif
-#if VKRAY_OBJECT_BVH
+#if VKRAY_RAY_QUERY
+    walkStructure(origin, direction, feeler, hit, through);
+#elif VKRAY_OBJECT_BVH
     // The unbounded objects (planes) first, as if a leaf, then the BVH's
     // leaves front to back: each turn of the inner loop tests the two
     // children of the node at hand and goes on to the nearer one the ray

@@ -11,6 +11,8 @@
 // VKRAY_OBJECT_BVH finds objects through a BVH instead of testing each, and
 // VKRAY_FEELER_HINTS has its feelers' walks first test what stopped a feeler
 // nearby (shade.glsl);
+// VKRAY_RAY_QUERY has the driver's acceleration structure find the objects
+// (scene_walk.glsl, --traversal rayquery);
 // VKRAY_BLOCKS (--block > 1) fills each ray's block of pixels;
 // VKRAY_DEBUG_PIXEL (for `vkray pixel`) also records every step of the one
 // ray the host dispatches into the debug buffer; VKRAY_STRESS_OUTPUT (for
@@ -22,6 +24,9 @@
 #extension GL_EXT_control_flow_attributes : require
 
 #include "variant_flags.glsl"
+#if VKRAY_RAY_QUERY
+#extension GL_EXT_ray_query : require
+#endif
 #include "layout.h"
 #if VKRAY_ANTIALIAS
 #include "sampling.h"
@@ -150,8 +155,10 @@ real taperOf(uint index) {
 // The host packs the nodes to match (meshNodesWithObjects).
 // Where the host has placed every mesh object's triangles in the object BVH
 // in world space instead (VKRAY_WORLD_TRIANGLES), the walk has no mesh to enter.
-#define VKRAY_MESH_INSTANCES \
-    (VKRAY_OBJECT_BVH && VKRAY_SHAPE_MESH && !VKRAY_STRESS_OUTPUT && !VKRAY_WORLD_TRIANGLES)
+// The ray-query walk leaves each mesh to its object's test (intersectMesh).
+#define VKRAY_MESH_INSTANCES                                                            \
+    (VKRAY_OBJECT_BVH && VKRAY_SHAPE_MESH && !VKRAY_STRESS_OUTPUT && !VKRAY_WORLD_TRIANGLES && \
+     !VKRAY_RAY_QUERY)
 // A walk that meets triangles: a mesh's, or the world's.
 #define VKRAY_WALK_TRIANGLES (VKRAY_MESH_INSTANCES || VKRAY_WORLD_TRIANGLES)
 

@@ -30,6 +30,9 @@
 #if !defined(VKRAY_KEEP_TORI) || !defined(VKRAY_FEELER_HINTS) || !defined(VKRAY_WORLD_TRIANGLES)
 #error "VKRAY_KEEP_TORI, VKRAY_FEELER_HINTS or VKRAY_WORLD_TRIANGLES is not defined: the host defines every variant flag, 0 or 1"
 #endif
+#if !defined(VKRAY_RAY_QUERY)
+#error "VKRAY_RAY_QUERY is not defined: the host defines every variant flag, 0 or 1"
+#endif
 #if !defined(VKRAY_OBJECTS)
 #error "VKRAY_OBJECTS is not defined: the host defines it, the object count of an unrolled walk or 0"
 #endif

@@ -69,7 +69,8 @@ gpu::GpuRenderOptions gpuRenderOptions(const Options& o) {
     return {.shaderDirectory = shaderDirectoryFor(o),
             .allFeatures = o.allFeatures,
             .userDefines = o.defines,
-            .precision = o.precision};
+            .precision = o.precision,
+            .traversal = o.traversal};
 }
 
 namespace {

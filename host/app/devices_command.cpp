@@ -21,7 +21,9 @@ int runDevices(std::ostream& out) {
             << "\n   type " << d.type << ", driver " << d.driverName << " " << d.driverInfo
             << " (version " << d.driverVersion << "), Vulkan " << d.apiVersionString()
             << "\n   compute " << (d.hasCompute ? "yes" : "no") << ", shaderFloat64 "
-            << (d.shaderFloat64 ? "yes" : "no") << ", subgroup size " << d.subgroupSize
+            << (d.shaderFloat64 ? "yes" : "no") << ", ray queries "
+            << (d.rayQuery ? "yes (--traversal rayquery)" : "no") << ", subgroup size "
+            << d.subgroupSize
             << ", max storage buffer " << d.maxStorageBufferRange << " bytes"
             << ", max uniform buffer " << d.maxUniformBufferRange << " bytes"
             << ", max texel buffer " << d.maxTexelBufferElements << " texels"

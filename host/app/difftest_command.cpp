@@ -66,7 +66,8 @@ public:
                 key, std::make_unique<gpu::GpuTracer>(
                          context_, gpu::GpuRenderOptions{.shaderDirectory = shaderDirectoryFor(o_),
                                                          .allFeatures = o_.allFeatures,
-                                                         .precision = precision}));
+                                                         .precision = precision,
+                                                         .traversal = o_.traversal}));
             if (used_.size() > kKept) used_.pop_back();
         }
         return *used_.front().second;

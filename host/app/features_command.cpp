@@ -2,7 +2,9 @@
 
 #include "app/commands.h"
 #include "app/features_report.h"
+#include "gpu/context.h"
 #include "gpu/shader_variant.h"
+#include "gpu/traversal.h"
 #include "gpu/spirv_cache.h"
 
 #include <ostream>
@@ -21,13 +23,24 @@ int runFeatures(const Options& o, std::ostream& out, std::ostream& err) {
     const Precision precision =
         precisionInForce(scene, makeCameraBasis(camera, o.width, o.height), o, choice, err)
             .precision;
-    const gpu::ShaderFeatures features =
+    gpu::ShaderFeatures features =
         gpu::variantFeatures(scene, settings, o.allFeatures, precision, camera.eye,
-                             std::numeric_limits<std::uint64_t>::max());  // no device here
+                             std::numeric_limits<std::uint64_t>::max());
+    // The walk `render` would take on the device it would pick; with no
+    // Vulkan device at all, the own walk (`render` would refuse).
+    gpu::DeviceInfo device;
+    device.name = "no Vulkan device";
+    try {
+        device = gpu::Context({.deviceIndex = o.device}).device();
+    } catch (const Error&) {
+        if (o.traversal == gpu::Traversal::RayQuery) throw;
+    }
+    const std::string traversal = gpu::chooseTraversal(o.traversal, device, scene, features);
     const gpu::ShaderSource source =
         gpu::variantSource(shaderDirectoryFor(o), features, precision, o.defines);
     out << formatFeatureReport(scene, settings, features, precision, source.defines,
                                gpu::spirvCacheKey(source))
+        << "traversal: " << traversal << "\n"
         << choice.str();
     return 0;
 }

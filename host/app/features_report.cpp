@@ -72,6 +72,9 @@ std::string bufferSize(std::uint32_t binding, const gpu::GpuScene& packed, const
     case BINDING_TEXELS: return arrayBytes(packed.texels);
     case BINDING_DOUBLE_CAMERA: return std::to_string(sizeof(GpuDoubleCamera)) + " bytes";
     case BINDING_DOUBLE_OBJECTS: return arrayBytes(packed.doubleObjects);
+    case BINDING_SCENE_STRUCTURE:
+        return std::to_string(packed.unboundedFirst) +
+               " boxes, built by the driver (its size is the driver's)";
     default: return "?";
     }
 }
@@ -239,7 +242,9 @@ std::string formatFeatureReport(const Scene& scene, const RenderSettings& settin
     for (const gpu::ShaderBinding& b : gpu::bindingsFor(features)) {
         char line[96];
         std::snprintf(line, sizeof line, "  %2u %-24s %-8s ", b.binding, b.name,
-                      b.kind == gpu::BindingKind::Storage ? "storage" : "texels");
+                      b.kind == gpu::BindingKind::Storage                 ? "storage"
+                      : b.kind == gpu::BindingKind::AccelerationStructure ? "driver's"
+                                                                          : "texels");
         out << line << bufferSize(b.binding, packed, scene, features.doubles) << "\n";
     }
     return out.str();

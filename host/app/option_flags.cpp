@@ -259,6 +259,15 @@ const std::vector<FlagSpec>& flagSpecs() {
                      o.precisionGiven ? parsePrecision("--precision", v) : Precision::Robust;
              });
          }},
+        {"--traversal",
+         "auto (default: the own walk, or ray queries where they measured faster), own (vkray's "
+         "BVH walk in GLSL) or rayquery (the driver's acceleration structure, VK_KHR_ray_query): "
+         "the walk that finds the objects (docs/ray-queries.md)",
+         [](CLI::App& a, Options& o, const std::string& h) {
+             return valueFlag(a, "--traversal", h, "WALK", [&o](const std::string& v) {
+                 o.traversal = gpu::parseTraversal("--traversal", v);
+             });
+         }},
         {"--out", "where the outputs go",
          [](CLI::App& a, Options& o, const std::string& h) {
              return a.add_option("--out", o.outDirectory, h)->type_name("DIR");

@@ -54,7 +54,8 @@ const std::vector<CommandSpec>& commandSpecs() {
                                      {"-D", ""},
                                      {"--dump-spirv", ""},
                                      {"--quiet", ""},
-                                     {"--precision", ""}});
+                                     {"--precision", ""},
+                                     {"--traversal", ""}});
         s.push_back(
             {"render",
              Command::Render,
@@ -133,6 +134,8 @@ const std::vector<CommandSpec>& commandSpecs() {
                      {{"--variant", ""},
                       {"--spp", ""},
                       {"--precision", ""},
+                      {"--traversal", ""},
+                      {"--device", ""},
                       {"--lenient", ""},
                       {"-D", ""},
                       {"--shader-dir", ""}}});
@@ -157,6 +160,7 @@ const std::vector<CommandSpec>& commandSpecs() {
               {"--out",
                "where the scenes that disagree are kept, each with its command "
                "(default difftest)"},
+              {"--traversal", ""},
               {"--device", ""},
               {"--threads", ""},
               {"--shader-dir", ""}}});
@@ -172,6 +176,7 @@ const std::vector<CommandSpec>& commandSpecs() {
                      {"--screenshot", ""},
                      {"--device", ""},
                      {"--precision", ""},
+                     {"--traversal", ""},
                      {"--variant", ""},
                      {"-D", ""},
                      {"--shader-dir", ""},
@@ -230,6 +235,7 @@ std::string excludesMessage(std::string a, std::string b) {
             return "-D and --dump-spirv apply to the GPU shader; drop --cpu";
         if (b == "--precision")
             return "--precision applies to the GPU; --cpu always renders in double";
+        if (b == "--traversal") return "--traversal applies to the GPU's walk; drop --cpu";
     }
     return a + " and " + b + " cannot be given together";
 }
@@ -280,7 +286,7 @@ struct Parser {
             if (spec.command == Command::Render) {
                 CLI::Option* cpu = sub->get_option("--cpu");
                 for (const char* gpuOnly :
-                     {"--check", "--validation", "-D", "--dump-spirv", "--precision"})
+                     {"--check", "--validation", "-D", "--dump-spirv", "--precision", "--traversal"})
                     cpu->excludes(sub->get_option(gpuOnly));
                 for (const char* checkOnly : {"--diff", "--fail", "--failpercent"})
                     sub->get_option(checkOnly)->needs(sub->get_option("--check"));

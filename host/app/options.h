@@ -5,6 +5,7 @@
 #pragma once
 
 #include "gpu/precision.h"
+#include "gpu/traversal.h"
 
 #include <glm/vec3.hpp>
 
@@ -76,6 +77,8 @@ struct Options {
     // auto (precisionGiven false) is resolved per scene by precisionInForce.
     Precision precision = Precision::Robust;
     bool precisionGiven = false;
+    // render, view, features, difftest: --traversal auto|own|rayquery (gpu/traversal.h).
+    gpu::Traversal traversal = gpu::Traversal::Auto;
 
     // stress [--cases PATTERN] [--cases-dir DIR] [--out DIR]; report SCENE [--out DIR]
     std::string casesPattern;

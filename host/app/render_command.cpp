@@ -85,7 +85,9 @@ std::string stageLine(const StageTimes& t, double total) {
         line +=
             ", shader " + s(g.shader.seconds) + (g.shader.cacheHit ? " (cached)" : " (compiled)");
         if (g.pipelineSeconds > 0) line += ", pipeline " + s(g.pipelineSeconds);
-        line += ", preparation and upload " + s(g.setupSeconds) + ", trace " +
+        line += ", preparation and upload " + s(g.setupSeconds);
+        if (g.structureSeconds > 0) line += " (acceleration structure " + s(g.structureSeconds) + ")";
+        line += ", trace " +
                 s(g.renderSeconds - g.readBackSeconds) + " (its first tile " +
                 s(g.firstTileSeconds) + "), read-back " + s(g.readBackSeconds);
         counted += g.shader.seconds + g.pipelineSeconds + g.setupSeconds + g.renderSeconds;
@@ -123,6 +125,7 @@ Frame renderGpu(const Scene& scene, const CameraBasis& camera, const RenderSetti
                 << " workgroups traced; the other rays meet nothing, their pixels the "
                    "background's\n";
         out << "gpu render: device time " << deviceTime(stats) << "\n";
+        out << "gpu render: traversal " << stats.traversal << "\n";
         if (stats.tilesRedone > 0)
             out << "gpu render: " << stats.tilesRedone
                 << (stats.tilesRedone == 1 ? " tile was" : " tiles were")

@@ -2,6 +2,7 @@
 
 #include "util/error.h"
 
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -45,6 +46,32 @@ std::optional<std::uint32_t> computeQueueFamily(const vk::raii::PhysicalDevice& 
     return std::nullopt;
 }
 
+bool hasExtension(const vk::raii::PhysicalDevice& device, const char* name) {
+    for (const auto& extension : device.enumerateDeviceExtensionProperties())
+        if (std::strcmp(extension.extensionName.data(), name) == 0) return true;
+    return false;
+}
+
+// The device extensions a ray query needs.
+constexpr std::array kRayQueryExtensions{VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+                                         VK_KHR_RAY_QUERY_EXTENSION_NAME,
+                                         VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+
+bool supportsRayQueries(const vk::raii::PhysicalDevice& device) {
+    for (const char* name : kRayQueryExtensions)
+        if (!hasExtension(device, name)) return false;
+    // Features of extensions the device lacks are not asked for.
+    const auto features =
+        device.getFeatures2<vk::PhysicalDeviceFeatures2,
+                            vk::PhysicalDeviceAccelerationStructureFeaturesKHR,
+                            vk::PhysicalDeviceRayQueryFeaturesKHR,
+                            vk::PhysicalDeviceBufferDeviceAddressFeatures>();
+    return features.get<vk::PhysicalDeviceAccelerationStructureFeaturesKHR>()
+               .accelerationStructure &&
+           features.get<vk::PhysicalDeviceRayQueryFeaturesKHR>().rayQuery &&
+           features.get<vk::PhysicalDeviceBufferDeviceAddressFeatures>().bufferDeviceAddress;
+}
+
 DeviceInfo describe(const vk::raii::PhysicalDevice& device, int index) {
     DeviceInfo info;
     info.index = index;
@@ -63,6 +90,8 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& device, int index) {
     info.apiVersion = props.apiVersion;
     info.hasCompute = computeQueueFamily(device).has_value() && injectedFault() != Fault::NoCompute;
     info.shaderFloat64 = device.getFeatures().shaderFloat64 && injectedFault() != Fault::NoFloat64;
+    info.rayQuery = props.apiVersion >= VK_API_VERSION_1_2 && supportsRayQueries(device) &&
+                    injectedFault() != Fault::NoRayQuery;
     info.maxStorageBufferRange = props.limits.maxStorageBufferRange;
     info.maxUniformBufferRange = props.limits.maxUniformBufferRange;
     info.maxTexelBufferElements = props.limits.maxTexelBufferElements;
@@ -161,10 +190,11 @@ Fault injectedFault() {
     if (fault == "no-timestamps") return Fault::NoTimestamps;
     if (fault == "slow-progress") return Fault::SlowProgress;
     if (fault == "no-offset") return Fault::NoOffset;
+    if (fault == "no-ray-query") return Fault::NoRayQuery;
     throw Error("VKRAY_FAULT='" + fault +
                 "' is not a fault vkray can inject (no-compute, device-lost, "
                 "out-of-device-memory, no-float64, no-timestamps, slow-progress, "
-                "no-offset); it is a test hook: "
+                "no-offset, no-ray-query); it is a test hook: "
                 "unset it");
 }
 
@@ -307,7 +337,26 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
                         "); choose another with --device, or use `vkray render --watch`");
         deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     }
-    vk::DeviceCreateInfo deviceInfo({}, queueInfo, {}, deviceExtensions, &enabled);
+    // Ray queries where the device has them (--traversal rayquery).
+    vk::StructureChain<vk::DeviceCreateInfo, vk::PhysicalDeviceAccelerationStructureFeaturesKHR,
+                       vk::PhysicalDeviceRayQueryFeaturesKHR,
+                       vk::PhysicalDeviceBufferDeviceAddressFeatures>
+        chain;
+    if (s.info.rayQuery) {
+        deviceExtensions.insert(deviceExtensions.end(), kRayQueryExtensions.begin(),
+                                kRayQueryExtensions.end());
+        chain.get<vk::PhysicalDeviceAccelerationStructureFeaturesKHR>().accelerationStructure = true;
+        chain.get<vk::PhysicalDeviceRayQueryFeaturesKHR>().rayQuery = true;
+        chain.get<vk::PhysicalDeviceBufferDeviceAddressFeatures>().bufferDeviceAddress = true;
+    } else {
+        chain.unlink<vk::PhysicalDeviceAccelerationStructureFeaturesKHR>();
+        chain.unlink<vk::PhysicalDeviceRayQueryFeaturesKHR>();
+        chain.unlink<vk::PhysicalDeviceBufferDeviceAddressFeatures>();
+    }
+    vk::DeviceCreateInfo& deviceInfo = chain.get<vk::DeviceCreateInfo>();
+    deviceInfo.setQueueCreateInfos(queueInfo);
+    deviceInfo.setPEnabledExtensionNames(deviceExtensions);
+    deviceInfo.setPEnabledFeatures(&enabled);
     s.device = vk::raii::Device(s.physicalDevice, deviceInfo);
     s.queue = s.device.getQueue(s.queueFamily, 0);
     s.commandPool = vk::raii::CommandPool(
@@ -346,8 +395,13 @@ HostBuffer::HostBuffer(Context::Impl& context, vk::DeviceSize size, vk::BufferUs
                                               : vk::MemoryPropertyFlagBits::eHostVisible);
     coherent_ = bool(properties.memoryTypes[type].propertyFlags &
                      vk::MemoryPropertyFlagBits::eHostCoherent);
-    memory_ = vk::raii::DeviceMemory(context.device, {requirements.size, type});
+    // Acceleration structures and their inputs are found by address.
+    const bool addressed = bool(usage & vk::BufferUsageFlagBits::eShaderDeviceAddress);
+    vk::MemoryAllocateFlagsInfo flags(vk::MemoryAllocateFlagBits::eDeviceAddress);
+    memory_ = vk::raii::DeviceMemory(context.device,
+                                     {requirements.size, type, addressed ? &flags : nullptr});
     buffer_.bindMemory(*memory_, 0);
+    if (addressed) address_ = context.device.getBufferAddress({*buffer_});
     if (!local) mapped_ = memory_.mapMemory(0, VK_WHOLE_SIZE);
 }
 

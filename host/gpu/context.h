@@ -22,6 +22,9 @@ struct DeviceInfo {
     std::uint32_t subgroupSize = 0;
     bool hasCompute = false;
     bool shaderFloat64 = false;
+    // VK_KHR_ray_query with VK_KHR_acceleration_structure and buffer device
+    // addresses (`--traversal rayquery`): lavapipe from Mesa 24.1, RTX GPUs.
+    bool rayQuery = false;
     std::uint64_t maxStorageBufferRange = 0;
     std::uint64_t maxUniformBufferRange = 0;
     std::uint64_t maxTexelBufferElements = 0;
@@ -76,7 +79,8 @@ private:
 // progress report of a render waits 25 ms, so that tests of progress lines and interruption do not
 // depend on the machine's speed; or `no-offset`: the shader's secondary rays start on the surface
 // they leave (VKRAY_FAULT_NO_OFFSET = 1), so that tests can show `vkray stress` counting the acne
-// that follows. Unset: None. An unknown NAME is an Error.
+// that follows; or `no-ray-query`: no device has ray queries. Unset: None. An unknown NAME is an
+// Error.
 enum class Fault {
     None,
     NoCompute,
@@ -85,7 +89,8 @@ enum class Fault {
     NoFloat64,
     NoTimestamps,
     SlowProgress,
-    NoOffset
+    NoOffset,
+    NoRayQuery
 };
 Fault injectedFault();
 

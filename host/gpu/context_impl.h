@@ -52,6 +52,8 @@ public:
     vk::Buffer buffer() const { return *buffer_; }
     vk::DeviceSize size() const { return size_; }
     void* data() const { return mapped_; }                  // nullptr when device-local
+    // With eShaderDeviceAddress usage: where the device finds it (else 0).
+    vk::DeviceAddress address() const { return address_; }
     void upload(const void* source, vk::DeviceSize bytes);  // host-visible only
     // Makes host writes through data() visible to the device on non-coherent memory.
     void flush();
@@ -65,6 +67,7 @@ private:
     vk::raii::DeviceMemory memory_ = nullptr;
     vk::raii::Buffer buffer_ = nullptr;
     void* mapped_ = nullptr;
+    vk::DeviceAddress address_ = 0;
 };
 
 }  // namespace vkray::gpu

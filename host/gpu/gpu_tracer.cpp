@@ -169,6 +169,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
         options_.worldTriangles ? deviceLimits(context_.device()).maxTexelBufferElements
                                 : 0);  // no room: each mesh walked in its generic space
     features.stressOutput = stressSamples != nullptr;
+    st.traversal = chooseTraversal(options_.traversal, context_.device(), scene, features);
     if (stressSamples && scene.lights.size() > STRESS_MAX_LIGHTS)
         throw Error("the stress output records the feelers of " +
                     std::to_string(STRESS_MAX_LIGHTS) + " lights; this scene has " +
@@ -210,6 +211,7 @@ Frame GpuTracer::renderFrame(const Scene& original, const CameraBasis& originalC
                        !features.stressOutput && !features.debugPixel;
     TracePass pass(context_.impl(), pipeline, features, features.doubles, scene, camera, settings,
                    tile, {cover, bool(tileListener_)}, overlap ? 2 : 1);
+    st.structureSeconds = pass.structureSeconds();
 
     // Tracing every tile, the frame starts as the background, so that a
     // tile's pixels whose rays meet nothing (most of many images) are not

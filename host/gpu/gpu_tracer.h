@@ -7,6 +7,7 @@
 #include "gpu/precision.h"
 #include "gpu/shader_variant.h"
 #include "gpu/spirv_cache.h"
+#include "gpu/traversal.h"
 #include "image/frame.h"
 #include "image/pixel_trace.h"
 #include "image/stress_sample.h"
@@ -51,6 +52,9 @@ struct GpuRenderOptions {
     // Other shapes are for benchmarks (vkray_bench --workgroup).
     int workgroupX = 0, workgroupY = 0;
     bool serpentineTiles = false;  // tile rows alternately right to left (else all left to right)
+    // The walk that finds the objects (gpu/traversal.h); `vkray pixel` and
+    // the stress record always take the own walk, whose tests they count.
+    Traversal traversal = Traversal::Auto;
     // Dispatch only the workgroups whose primary rays may meet an object
     // (render/primary_cover.h); the others' pixels are written as misses,
     // the same bytes. Robust and fp64 only: naive's misses are as the
@@ -82,6 +86,10 @@ struct GpuRenderStats {
     std::optional<double> deviceSeconds;
     CompiledShader shader;  // SPIR-V, key, cache hit, compile/load time
     std::string variant;    // describe(features), e.g. "sphere+cube"
+    std::string traversal;  // the walk taken and why (chooseTraversal)
+    // Within setupSeconds: the ray-query variant's acceleration structure
+    // built on the device (0 for the own walk, whose BVH is built on the host).
+    double structureSeconds = 0;
     std::size_t tiles = 0;
     std::size_t dispatches = 0;   // a tile takes several when its rays pause (turnBudget)
     std::size_t tilesRedone = 0;  // started over: the driver's loop limit cut a dispatch short

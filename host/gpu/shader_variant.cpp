@@ -73,7 +73,7 @@ bool keepsTori(const ShaderFeatures& features) {
 
 bool hintsFeelers(const ShaderFeatures& features) {
     return features.has(Shading::Shadows) && features.objectBvh && !features.unbounded &&
-           !features.stressOutput && !features.debugPixel;
+           !features.stressOutput && !features.debugPixel && !features.rayQuery;
 }
 
 bool meshesFitWorldSpace(const Scene& scene, const glm::dvec3& eye, std::uint64_t maxTexels) {
@@ -121,7 +121,7 @@ void placeMeshesInWorldWhereTheyFit(const Scene& scene, const glm::dvec3& eye,
 
 bool placesTrianglesInWorld(const ShaderFeatures& features) {
     return features.meshesInWorld && features.objectBvh && !features.stressOutput &&
-           !features.debugPixel;
+           !features.debugPixel && !features.rayQuery;
 }
 
 ShaderFeatures featuresOf(const Scene& scene, const RenderSettings& settings, bool allFeatures) {
@@ -186,6 +186,7 @@ Defines definesFor(const ShaderFeatures& features, const Defines& userDefines) {
     defines.emplace_back("VKRAY_KEEP_TORI", flag(keepsTori(features)));
     defines.emplace_back("VKRAY_FEELER_HINTS", flag(hintsFeelers(features)));
     defines.emplace_back("VKRAY_WORLD_TRIANGLES", flag(placesTrianglesInWorld(features)));
+    defines.emplace_back("VKRAY_RAY_QUERY", flag(features.rayQuery));
     defines.emplace_back("VKRAY_OBJECTS", std::to_string(features.unrolledObjects));
     if (features.unrolledObjects > 0) {
         std::string kinds;
@@ -206,7 +207,8 @@ std::vector<std::string> variantFlags() {
     for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_BLOCKS", "VKRAY_AOVS",
                               "VKRAY_DEBUG_PIXEL", "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET",
                               "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64", "VKRAY_KEEP_TORI",
-                              "VKRAY_FEELER_HINTS", "VKRAY_WORLD_TRIANGLES", "VKRAY_OBJECTS"})
+                              "VKRAY_FEELER_HINTS", "VKRAY_WORLD_TRIANGLES", "VKRAY_RAY_QUERY",
+                              "VKRAY_OBJECTS"})
         flags.push_back(other);
     return flags;
 }
@@ -235,6 +237,7 @@ std::string describe(const ShaderFeatures& features) {
     if (features.stressOutput) text += "+stress-output";
     if (features.doubles) text += "+fp64";
     if (placesTrianglesInWorld(features)) text += "+world-triangles";
+    if (features.rayQuery) text += "+ray-query";
     return text;
 }
 
@@ -276,12 +279,14 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
     }
     if (features.stressOutput)
         bindings.push_back({BINDING_STRESS_OUTPUT, "stress output", Storage});
+    if (features.rayQuery)
+        bindings.push_back({BINDING_SCENE_STRUCTURE, "acceleration structure", AccelerationStructure});
     return bindings;
 }
 
 bool meshNodesWithObjects(const ShaderFeatures& features) {
     return features.objectBvh && features.kinds[KIND_MESH] && !features.stressOutput &&
-           !placesTrianglesInWorld(features);
+           !placesTrianglesInWorld(features) && !features.rayQuery;
 }
 
 std::vector<ShaderFeatures> allVariants(bool everyCombination) {

@@ -69,6 +69,9 @@ struct ShaderFeatures {
     bool debugPixel = false;    // `vkray pixel`: the shader writes a trace record
     bool stressOutput = false;  // `vkray stress`, `vkray pixel`: GpuStressSample per pixel
     bool doubles = false;       // --precision fp64: camera and M^-1 read in double
+    // The driver's acceleration structure finds the bounded objects
+    // (VKRAY_RAY_QUERY; gpu/traversal.h chooses it).
+    bool rayQuery = false;
     // The mesh objects may go into the object BVH as their triangles in
     // world space (meshesFitWorldSpace); placesTrianglesInWorld says whether they do.
     bool meshesInWorld = false;
@@ -169,6 +172,7 @@ enum class BindingKind {
                  // and fp64's camera parameters; the pending rays)
     Texels,      // a read-only storage texel buffer, rgba32ui (uimageBuffer)
     UintTexels,  // the same, r32ui
+    AccelerationStructure,  // the driver's (VKRAY_RAY_QUERY), not a buffer of vkray's
 };
 
 // One descriptor (set 0) a variant declares: the host creates and uploads a

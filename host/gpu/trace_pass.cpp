@@ -3,9 +3,11 @@
 #include "gpu/device_limits.h"
 #include "gpu/gpu_scene.h"
 #include "gpu/workgroup_order.h"
+#include "scene/scene_geometry.h"
 #include "util/error.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <utility>
@@ -33,6 +35,8 @@ BindingUse useOf(BindingKind kind) {
     case BindingKind::UintTexels:
         return {vk::DescriptorType::eStorageTexelBuffer, Usage::eStorageTexelBuffer,
                 vk::Format::eR32Uint, 4};
+    case BindingKind::AccelerationStructure:
+        return {vk::DescriptorType::eAccelerationStructureKHR, {}};
     }
     throw Error("internal: a binding of no known kind");
 }
@@ -295,8 +299,23 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
         add(BINDING_DOUBLE_CAMERA, std::vector<GpuDoubleCamera>{packDoubleCamera(camera)});
         add(BINDING_DOUBLE_OBJECTS, packed.doubleObjects);
     }
+    if (features.rayQuery) {
+        // The boxes of the bounded objects, in the order of the BVH's entries (objectAt).
+        std::vector<Aabb> boxes;
+        double scale = 0;
+        const auto reach = [&](const glm::dvec3& p) {
+            scale = std::max({scale, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+        };
+        reach(camera.eye);
+        for (uint entry = 0; entry < packed.unboundedFirst; ++entry) {
+            const Aabb box = worldBounds(scene.objects.at(packed.objectIndex[entry]), scene);
+            if (box.finite()) reach(box.lo), reach(box.hi);
+            boxes.push_back(box);
+        }
+        structure_ = std::make_unique<SceneStructure>(c, boxes, scale);
+    }
     // Exactly the variant's bindings (bindingsFor): no buffer uploaded for nothing.
-    if (bindings.size() != buffers_.size() + slots_[0].buffers.size())
+    if (bindings.size() != buffers_.size() + slots_[0].buffers.size() + (structure_ ? 1 : 0))
         throw Error("internal: the buffers uploaded differ from the variant's bindings");
     copyStaged();
 
@@ -322,6 +341,12 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
                 }
             }
         }
+        const vk::AccelerationStructureKHR structure = structure_ ? structure_->handle() : nullptr;
+        const vk::WriteDescriptorSetAccelerationStructureKHR structureInfo(structure);
+        if (structure_)
+            writes.emplace_back(set, BINDING_SCENE_STRUCTURE, 0, 1,
+                                vk::DescriptorType::eAccelerationStructureKHR)
+                .setPNext(&structureInfo);
         c.device.updateDescriptorSets(writes, nullptr);
     }
 }

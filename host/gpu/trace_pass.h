@@ -5,6 +5,7 @@
 
 #include "gpu/compute_pipeline.h"
 #include "gpu/gpu_tracer.h"
+#include "gpu/scene_structure.h"
 #include "gpu/shader_variant.h"
 #include "render/camera.h"
 #include "render/primary_cover.h"
@@ -67,6 +68,8 @@ public:
     TracePass& operator=(const TracePass&) = delete;
 
     int slots() const { return int(slots_.size()); }
+    // The ray-query variant's acceleration structure build, on the device (0: none).
+    double structureSeconds() const { return structure_ ? structure_->buildSeconds() : 0; }
     // Workgroups dispatched, of all the workgroups of the tiles started.
     std::size_t groupsTraced() const { return groupsTraced_; }
     std::size_t groups() const { return groups_; }
@@ -179,6 +182,7 @@ private:
     std::vector<Staged> staged_;      // until copyStaged()
     std::vector<vk::Buffer> zeroed_;  // what the shader alone writes, filled by copyStaged()
     std::vector<Slot> slots_;
+    std::unique_ptr<SceneStructure> structure_;  // the ray-query variant's
 };
 
 }  // namespace vkray::gpu
