@@ -221,6 +221,7 @@ enum Engine {
     kEmbree1,
     kEmbree8,
     kGpuRayQuery,  // the specialised variant with --traversal rayquery
+    kGpuOwn,       // and with --traversal own (GPU is auto's choice)
     kEngines
 };
 
@@ -243,6 +244,7 @@ struct Row {
     // its preparation), and whether its ids equal the own walk's.
     std::optional<double> structureBuild;
     std::string idsRayQuery = "-";
+    bool rayQueryChosen = false;  // auto took ray queries for the GPU column
 };
 
 // The rays of the big image and of the all-features variant's small one.
@@ -294,7 +296,7 @@ void printTable(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
     std::printf(
         "| scene | objects | variant | GPU | GPU, every workgroup | all-features | CPU ref "
         "| Embree 1 | Embree 8 | GPU, ray query | GPU/all | GPU/CPU | every workgroup/CPU | "
-        "GPU/Embree | ray query/GPU |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+        "GPU/Embree | ray query/own walk |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
         "\n");
     for (const Row& r : rows) {
         if (!r.refused.empty()) {
@@ -313,7 +315,7 @@ void printTable(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
             ratio(m[kGpu], m[kCpuReference]).c_str(),
             ratio(m[kGpuEveryGroup], m[kCpuReference]).c_str(),
             rate(over(m[kGpu], embreeBest(r, rays, cpuTime))).c_str(),
-            ratio(m[kGpuRayQuery], m[kGpu]).c_str());
+            ratio(m[kGpuRayQuery], m[kGpuOwn]).c_str());
     }
 }
 
@@ -380,9 +382,9 @@ void printRandomSummary(const std::vector<Row>& rows, RayCounts rays, const Opti
         o.randomScenes, o.width, o.height);
     std::printf("| ratio | min | median | max | scenes |\n|---|---|---|---|---|\n");
     int refused = 0;
-    Spread spreads[2][10];
+    Spread spreads[2][12];
     for (bool shaded : {false, true}) {
-        std::vector<double> figures[10];
+        std::vector<double> figures[12];
         for (const Row& r : rows) {
             if (!r.random || r.shaded != shaded) continue;
             if (!r.refused.empty()) {
@@ -400,11 +402,13 @@ void printRandomSummary(const std::vector<Row>& rows, RayCounts rays, const Opti
                 add(4 + k, over(mraysWithPreparation(r, kGpu, rays, cpuTime),
                                 mraysWithPreparation(r, kCpuReference, rays, cpuTime)));
                 add(6 + k, over(mrays(r, kGpu, rays, cpuTime), embreeBest(r, rays, cpuTime)));
-                add(8 + k, over(mrays(r, kGpuRayQuery, rays, cpuTime), mrays(r, kGpu, rays, cpuTime)));
+                add(8 + k,
+                    over(mrays(r, kGpuRayQuery, rays, cpuTime), mrays(r, kGpuOwn, rays, cpuTime)));
+                add(10 + k, over(mrays(r, kGpu, rays, cpuTime), mrays(r, kGpuOwn, rays, cpuTime)));
             }
         }
         const std::string kind = shaded ? "shaded" : "primary";
-        const char* what[10] = {"GPU/CPU ref, per CPU-second",
+        const char* what[12] = {"GPU/CPU ref, per CPU-second",
                                "GPU/CPU ref, wall clock",
                                "GPU every workgroup (no cover)/CPU ref, per CPU-second",
                                "GPU every workgroup (no cover)/CPU ref, wall clock",
@@ -413,13 +417,21 @@ void printRandomSummary(const std::vector<Row>& rows, RayCounts rays, const Opti
                                "GPU/Embree (the faster of 1 and 8), per CPU-second",
                                "GPU/Embree (the faster of 1 and 8), wall clock",
                                "GPU ray query/GPU own walk, per CPU-second",
-                               "GPU ray query/GPU own walk, wall clock"};
-        for (int i = 0; i < 10; ++i) {
+                               "GPU ray query/GPU own walk, wall clock",
+                               "GPU as shipped (auto's walk)/GPU own walk, per CPU-second",
+                               "GPU as shipped (auto's walk)/GPU own walk, wall clock"};
+        for (int i = 0; i < 12; ++i) {
             if (shaded && (i == 6 || i == 7)) continue;  // Embree traces primary rays only
             spreads[shaded][i] = spreadOf(figures[i]);
             printSpread((kind + ": " + what[i]).c_str(), spreads[shaded][i]);
         }
     }
+    const auto chosen = std::count_if(rows.begin(), rows.end(), [](const Row& r) {
+        return r.random && !r.shaded && r.rayQueryChosen;
+    });
+    if (spreads[0][8].count > 0)
+        std::printf("\nauto took ray queries for %td of the %d scenes (`vkray features` says why)\n",
+                    chosen, o.randomScenes);
     if (refused > 0)
         std::printf("\n%d scene(s) refused by the GPU (beyond the loop-turn bound): not counted\n",
                     refused);
@@ -526,7 +538,7 @@ Scene sceneToTrace(const BenchScene& bench, bool shaded) {
 // cull neither peer gets), and the all-features variant.
 struct Tracers {
     gpu::GpuTracer specialised, everyGroup, allFeatures;
-    std::optional<gpu::GpuTracer> rayQuery;  // where the device has ray queries
+    std::optional<gpu::GpuTracer> rayQuery, own;  // where the device has ray queries
 };
 
 // One scene, primary or shaded, on every engine.
@@ -547,6 +559,7 @@ Row measure(const BenchScene& bs, bool shaded, Tracers& tracers, const Options& 
     for (gpu::GpuTracer* t : {&tracers.specialised, &tracers.everyGroup, &tracers.allFeatures})
         t->setPrecision(precision);
     if (tracers.rayQuery) tracers.rayQuery->setPrecision(precision);
+    if (tracers.own) tracers.own->setPrecision(precision);
 
     // llvmpipe JIT-compiles a pipeline at its first dispatch: a small
     // warm-up render takes that out of the timed ones.
@@ -570,6 +583,7 @@ Row measure(const BenchScene& bs, bool shaded, Tracers& tracers, const Options& 
             return;
         }
         if (engine != kGpu) return;
+        row.rayQueryChosen = stats.variant.find("+ray-query") != std::string::npos;
         row.variant = stats.variant + (precision == Precision::Robust
                                            ? std::string()
                                            : std::string(", ") + precisionName(precision));
@@ -592,16 +606,18 @@ Row measure(const BenchScene& bs, bool shaded, Tracers& tracers, const Options& 
     // one beside a run of the others, so that a slow spell of the machine (a
     // shared VM's) falls on all and their ratios hold.
     Frame gpuFrame, cpuFrame, rayQueryFrame;
-    Timing gpuBest, everyGroupBest, rayQueryBest, cpuBest, cpuPrepare;
+    Timing gpuBest, everyGroupBest, rayQueryBest, ownBest, cpuBest, cpuPrepare;
     try {
         warmUp(tracers.specialised);
         warmUp(tracers.everyGroup);
-        if (tracers.rayQuery) warmUp(*tracers.rayQuery);
+        if (tracers.rayQuery) warmUp(*tracers.rayQuery), warmUp(*tracers.own);
         for (int r = 0; r < o.repeat; ++r) {
             gpuRun(tracers.specialised, settings, kGpu, gpuBest, &gpuFrame);
             gpuRun(tracers.everyGroup, settings, kGpuEveryGroup, everyGroupBest, nullptr);
-            if (tracers.rayQuery)
+            if (tracers.rayQuery) {
                 gpuRun(*tracers.rayQuery, settings, kGpuRayQuery, rayQueryBest, &rayQueryFrame);
+                gpuRun(*tracers.own, settings, kGpuOwn, ownBest, nullptr);
+            }
             if (!o.cpu) continue;
             reference::ReferenceStats stats;
             reference::ReferenceOptions options{o.threads};
@@ -618,6 +634,7 @@ Row measure(const BenchScene& bs, bool shaded, Tracers& tracers, const Options& 
     row.time[kGpuEveryGroup] = everyGroupBest;
     if (tracers.rayQuery) {
         row.time[kGpuRayQuery] = rayQueryBest;
+        row.time[kGpuOwn] = ownBest;
         row.idsRayQuery = rayQueryFrame.id == gpuFrame.id ? "same" : "DIFFER";
     }
     // The all-features variant is tens of times slower on lavapipe
@@ -823,11 +840,15 @@ int main(int argc, char** argv) {
             gpu::GpuTracer(context,
                            {.shaderDirectory = shaders, .allFeatures = true, .tileSize = o.tile}),
             std::nullopt};
-        if (o.rayQuery && context.device().rayQuery)
+        if (o.rayQuery && context.device().rayQuery) {
             tracers.rayQuery.emplace(context, gpu::GpuRenderOptions{
                                                   .shaderDirectory = shaders,
                                                   .tileSize = o.tile,
                                                   .traversal = gpu::Traversal::RayQuery});
+            tracers.own.emplace(context, gpu::GpuRenderOptions{.shaderDirectory = shaders,
+                                                               .tileSize = o.tile,
+                                                               .traversal = gpu::Traversal::Own});
+        }
         for (const BenchScene& bs : o.scenes) {
             for (bool shaded : bs.random ? std::vector<bool>{false, true} : std::vector{o.shaded}) {
                 rows.push_back(measure(bs, shaded, tracers, o, rays));

@@ -46,6 +46,18 @@ TEST_F(Difftest, TheFixedSeedsAgreeOrAreNotComparable) {
     EXPECT_TRUE(fs::exists(dir / "found" / "seed-100.sdl"));
 }
 
+// The ray-query walk (--traversal rayquery) on the same seeds: the same
+// verdicts. Only where the device has ray queries (the Mesa 25.0 stage).
+TEST_F(Difftest, TheRayQueryWalkAgreesOnTheFixedSeeds) {
+    const RunResult devices = vkray("devices");
+    if (devices.output.find("ray queries yes") == std::string::npos)
+        GTEST_SKIP() << "the device has no ray queries (lavapipe has them from Mesa 24.1)";
+    RunResult run = vkray("difftest --scenes 8 --seed 100 --traversal rayquery --out " +
+                          path("found"));
+    EXPECT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("difftest: 7 passed, 0 failed"), std::string::npos) << run.output;
+}
+
 // The shaders as built, `from` replaced by `to` in the copy's file `name`
 // (which must hold it), in the test's folder: a GPU that is wrong as the
 // test wants it.

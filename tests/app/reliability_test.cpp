@@ -183,6 +183,28 @@ TEST_F(Reliability, NoDeviceWithComputeSaysWhatToInstall) {
     EXPECT_NE(chosen.output.find("has no compute queue"), std::string::npos) << chosen.output;
 }
 
+// On every device (those with ray queries made to lack them): --traversal
+// rayquery refused, naming the device and what to do, nothing written;
+// auto takes the own walk and says why.
+TEST_F(Reliability, RayQueriesOnADeviceWithoutThemAreRefused) {
+    RunResult run = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png") +
+                              " --traversal rayquery",
+                          "VKRAY_FAULT=no-ray-query");
+    EXPECT_EQ(run.status, 1) << run.output;
+    EXPECT_NE(run.output.find("--traversal rayquery: the device 0 ("), std::string::npos)
+        << run.output;
+    EXPECT_NE(run.output.find(") has no ray queries (VK_KHR_ray_query"), std::string::npos)
+        << run.output;
+    EXPECT_NE(run.output.find("render with --traversal own"), std::string::npos) << run.output;
+    expectNoOutputs();
+    RunResult automatic = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png"),
+                                "VKRAY_FAULT=no-ray-query");
+    EXPECT_EQ(automatic.status, 0) << automatic.output;
+    EXPECT_NE(automatic.output.find("gpu render: traversal own walk (auto: the device 0 ("),
+              std::string::npos)
+        << automatic.output;
+}
+
 TEST_F(Reliability, RenderReportsTheDeviceTimeOrThatItWasNotMeasured) {
     RunResult timed = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png"));
     EXPECT_EQ(timed.status, 0) << timed.output;

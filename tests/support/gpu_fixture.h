@@ -31,12 +31,14 @@ inline gpu::Context& gpuContext() {
     return *context;
 }
 
+// The own walk's render (the ray-query walk has its tests: traversal_test.cpp).
 inline Frame renderOnGpu(const Scene& scene, const CameraBasis& camera,
                          const RenderSettings& settings, gpu::GpuRenderStats* stats = nullptr,
                          bool allFeatures = false, bool worldTriangles = true) {
     gpu::GpuTracer tracer(gpuContext(), {.shaderDirectory = kShaderDir,
                                          .allFeatures = allFeatures,
-                                         .worldTriangles = worldTriangles});
+                                         .worldTriangles = worldTriangles,
+                                         .traversal = gpu::Traversal::Own});
     return tracer.render(scene, camera, settings, stats);
 }
 
