@@ -23,7 +23,7 @@ struct BenchOptions {
     int allWidth = 0, allHeight = 0;  // the all-features variant's image; 0: --size
     bool all = true, cpu = true, embree = true, fma = true;
     bool rayQuery = true;  // the ray-query traversal's column, where the device has ray queries
-    bool shaded = false;                                // keep lights and secondary rays
+    bool shaded = false;   // keep lights and secondary rays
     bool experiments = false, onlyExperiments = false;  // the tuning table (docs/benchmarks.md)
     std::string
         againstDirectory;  // --against: the tuning table is these shaders against --shader-dir's

@@ -296,7 +296,8 @@ void printTable(const std::vector<Row>& rows, RayCounts rays, bool cpuTime) {
     std::printf(
         "| scene | objects | variant | GPU | GPU, every workgroup | all-features | CPU ref "
         "| Embree 1 | Embree 8 | GPU, ray query | GPU/all | GPU/CPU | every workgroup/CPU | "
-        "GPU/Embree | ray query/own walk |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+        "GPU/Embree | ray query/own walk "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
         "\n");
     for (const Row& r : rows) {
         if (!r.refused.empty()) {
@@ -409,17 +410,17 @@ void printRandomSummary(const std::vector<Row>& rows, RayCounts rays, const Opti
         }
         const std::string kind = shaded ? "shaded" : "primary";
         const char* what[12] = {"GPU/CPU ref, per CPU-second",
-                               "GPU/CPU ref, wall clock",
-                               "GPU every workgroup (no cover)/CPU ref, per CPU-second",
-                               "GPU every workgroup (no cover)/CPU ref, wall clock",
-                               "GPU/CPU ref, preparation + trace, per CPU-second",
-                               "GPU/CPU ref, preparation + trace, wall clock",
-                               "GPU/Embree (the faster of 1 and 8), per CPU-second",
-                               "GPU/Embree (the faster of 1 and 8), wall clock",
-                               "GPU ray query/GPU own walk, per CPU-second",
-                               "GPU ray query/GPU own walk, wall clock",
-                               "GPU as shipped (auto's walk)/GPU own walk, per CPU-second",
-                               "GPU as shipped (auto's walk)/GPU own walk, wall clock"};
+                                "GPU/CPU ref, wall clock",
+                                "GPU every workgroup (no cover)/CPU ref, per CPU-second",
+                                "GPU every workgroup (no cover)/CPU ref, wall clock",
+                                "GPU/CPU ref, preparation + trace, per CPU-second",
+                                "GPU/CPU ref, preparation + trace, wall clock",
+                                "GPU/Embree (the faster of 1 and 8), per CPU-second",
+                                "GPU/Embree (the faster of 1 and 8), wall clock",
+                                "GPU ray query/GPU own walk, per CPU-second",
+                                "GPU ray query/GPU own walk, wall clock",
+                                "GPU as shipped (auto's walk)/GPU own walk, per CPU-second",
+                                "GPU as shipped (auto's walk)/GPU own walk, wall clock"};
         for (int i = 0; i < 12; ++i) {
             if (shaded && (i == 6 || i == 7)) continue;  // Embree traces primary rays only
             spreads[shaded][i] = spreadOf(figures[i]);
@@ -430,8 +431,9 @@ void printRandomSummary(const std::vector<Row>& rows, RayCounts rays, const Opti
         return r.random && !r.shaded && r.rayQueryChosen;
     });
     if (spreads[0][8].count > 0)
-        std::printf("\nauto took ray queries for %td of the %d scenes (`vkray features` says why)\n",
-                    chosen, o.randomScenes);
+        std::printf(
+            "\nauto took ray queries for %td of the %d scenes (`vkray features` says why)\n",
+            chosen, o.randomScenes);
     if (refused > 0)
         std::printf("\n%d scene(s) refused by the GPU (beyond the loop-turn bound): not counted\n",
                     refused);
@@ -578,7 +580,8 @@ Row measure(const BenchScene& bs, bool shaded, Tracers& tracers, const Options& 
             Timing prepare = row.prepare[kGpuRayQuery].value_or(Timing{});
             prepare.keepBest({stats.setupSeconds, stats.setupCpuSeconds});
             row.prepare[kGpuRayQuery] = prepare;
-            row.structureBuild = std::min(row.structureBuild.value_or(1e30), stats.structureSeconds);
+            row.structureBuild =
+                std::min(row.structureBuild.value_or(1e30), stats.structureSeconds);
             if (keep && keep->pixelCount() == 0) *keep = std::move(frame);
             return;
         }
@@ -841,10 +844,10 @@ int main(int argc, char** argv) {
                            {.shaderDirectory = shaders, .allFeatures = true, .tileSize = o.tile}),
             std::nullopt};
         if (o.rayQuery && context.device().rayQuery) {
-            tracers.rayQuery.emplace(context, gpu::GpuRenderOptions{
-                                                  .shaderDirectory = shaders,
-                                                  .tileSize = o.tile,
-                                                  .traversal = gpu::Traversal::RayQuery});
+            tracers.rayQuery.emplace(context,
+                                     gpu::GpuRenderOptions{.shaderDirectory = shaders,
+                                                           .tileSize = o.tile,
+                                                           .traversal = gpu::Traversal::RayQuery});
             tracers.own.emplace(context, gpu::GpuRenderOptions{.shaderDirectory = shaders,
                                                                .tileSize = o.tile,
                                                                .traversal = gpu::Traversal::Own});

@@ -23,8 +23,7 @@ int runDevices(std::ostream& out) {
             << "\n   compute " << (d.hasCompute ? "yes" : "no") << ", shaderFloat64 "
             << (d.shaderFloat64 ? "yes" : "no") << ", ray queries "
             << (d.rayQuery ? "yes (--traversal rayquery)" : "no") << ", subgroup size "
-            << d.subgroupSize
-            << ", max storage buffer " << d.maxStorageBufferRange << " bytes"
+            << d.subgroupSize << ", max storage buffer " << d.maxStorageBufferRange << " bytes"
             << ", max uniform buffer " << d.maxUniformBufferRange << " bytes"
             << ", max texel buffer " << d.maxTexelBufferElements << " texels"
             << ", memory heap " << d.memoryHeapBytes << " bytes"

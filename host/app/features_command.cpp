@@ -4,8 +4,8 @@
 #include "app/features_report.h"
 #include "gpu/context.h"
 #include "gpu/shader_variant.h"
-#include "gpu/traversal.h"
 #include "gpu/spirv_cache.h"
+#include "gpu/traversal.h"
 
 #include <ostream>
 #include <sstream>

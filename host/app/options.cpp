@@ -285,8 +285,8 @@ struct Parser {
             for (const auto& [flag, help] : spec.flags) addFlag(*sub, o, flag, help);
             if (spec.command == Command::Render) {
                 CLI::Option* cpu = sub->get_option("--cpu");
-                for (const char* gpuOnly :
-                     {"--check", "--validation", "-D", "--dump-spirv", "--precision", "--traversal"})
+                for (const char* gpuOnly : {"--check", "--validation", "-D", "--dump-spirv",
+                                            "--precision", "--traversal"})
                     cpu->excludes(sub->get_option(gpuOnly));
                 for (const char* checkOnly : {"--diff", "--fail", "--failpercent"})
                     sub->get_option(checkOnly)->needs(sub->get_option("--check"));

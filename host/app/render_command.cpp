@@ -86,9 +86,9 @@ std::string stageLine(const StageTimes& t, double total) {
             ", shader " + s(g.shader.seconds) + (g.shader.cacheHit ? " (cached)" : " (compiled)");
         if (g.pipelineSeconds > 0) line += ", pipeline " + s(g.pipelineSeconds);
         line += ", preparation and upload " + s(g.setupSeconds);
-        if (g.structureSeconds > 0) line += " (acceleration structure " + s(g.structureSeconds) + ")";
-        line += ", trace " +
-                s(g.renderSeconds - g.readBackSeconds) + " (its first tile " +
+        if (g.structureSeconds > 0)
+            line += " (acceleration structure " + s(g.structureSeconds) + ")";
+        line += ", trace " + s(g.renderSeconds - g.readBackSeconds) + " (its first tile " +
                 s(g.firstTileSeconds) + "), read-back " + s(g.readBackSeconds);
         counted += g.shader.seconds + g.pipelineSeconds + g.setupSeconds + g.renderSeconds;
     }

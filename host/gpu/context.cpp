@@ -61,11 +61,9 @@ bool supportsRayQueries(const vk::raii::PhysicalDevice& device) {
     for (const char* name : kRayQueryExtensions)
         if (!hasExtension(device, name)) return false;
     // Features of extensions the device lacks are not asked for.
-    const auto features =
-        device.getFeatures2<vk::PhysicalDeviceFeatures2,
-                            vk::PhysicalDeviceAccelerationStructureFeaturesKHR,
-                            vk::PhysicalDeviceRayQueryFeaturesKHR,
-                            vk::PhysicalDeviceBufferDeviceAddressFeatures>();
+    const auto features = device.getFeatures2<
+        vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceAccelerationStructureFeaturesKHR,
+        vk::PhysicalDeviceRayQueryFeaturesKHR, vk::PhysicalDeviceBufferDeviceAddressFeatures>();
     return features.get<vk::PhysicalDeviceAccelerationStructureFeaturesKHR>()
                .accelerationStructure &&
            features.get<vk::PhysicalDeviceRayQueryFeaturesKHR>().rayQuery &&
@@ -345,7 +343,8 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     if (s.info.rayQuery) {
         deviceExtensions.insert(deviceExtensions.end(), kRayQueryExtensions.begin(),
                                 kRayQueryExtensions.end());
-        chain.get<vk::PhysicalDeviceAccelerationStructureFeaturesKHR>().accelerationStructure = true;
+        chain.get<vk::PhysicalDeviceAccelerationStructureFeaturesKHR>().accelerationStructure =
+            true;
         chain.get<vk::PhysicalDeviceRayQueryFeaturesKHR>().rayQuery = true;
         chain.get<vk::PhysicalDeviceBufferDeviceAddressFeatures>().bufferDeviceAddress = true;
     } else {

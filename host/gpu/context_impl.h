@@ -51,7 +51,7 @@ public:
                BufferMemory memory = BufferMemory::HostVisible);
     vk::Buffer buffer() const { return *buffer_; }
     vk::DeviceSize size() const { return size_; }
-    void* data() const { return mapped_; }                  // nullptr when device-local
+    void* data() const { return mapped_; }  // nullptr when device-local
     // With eShaderDeviceAddress usage: where the device finds it (else 0).
     vk::DeviceAddress address() const { return address_; }
     void upload(const void* source, vk::DeviceSize bytes);  // host-visible only

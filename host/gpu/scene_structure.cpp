@@ -47,10 +47,12 @@ SceneStructure::SceneStructure(Context::Impl& c, std::span<const Aabb> boxes, do
     std::vector<vk::AabbPositionsKHR> floats;
     floats.reserve(boxes.size());
     for (const Aabb& box : boxes) floats.push_back(floatBox(box, kStructureBoxMargin * scale));
-    const vk::DeviceSize boxBytes = sizeof(vk::AabbPositionsKHR) * std::max<size_t>(floats.size(), 1);
+    const vk::DeviceSize boxBytes =
+        sizeof(vk::AabbPositionsKHR) * std::max<size_t>(floats.size(), 1);
     boxes_ = std::make_unique<HostBuffer>(
         c, boxBytes, Usage::eAccelerationStructureBuildInputReadOnlyKHR | addressed);
-    if (!floats.empty()) boxes_->upload(floats.data(), sizeof(vk::AabbPositionsKHR) * floats.size());
+    if (!floats.empty())
+        boxes_->upload(floats.data(), sizeof(vk::AabbPositionsKHR) * floats.size());
 
     // Each box reported to the shader once: a feeler multiplies the
     // transparencies of the objects it meets.
@@ -72,8 +74,8 @@ SceneStructure::SceneStructure(Context::Impl& c, std::span<const Aabb> boxes, do
             c, std::max<vk::DeviceSize>(sizes.accelerationStructureSize, 256),
             Usage::eAccelerationStructureStorageKHR | addressed, BufferMemory::DeviceLocal);
         vk::raii::AccelerationStructureKHR structure(
-            c.device, vk::AccelerationStructureCreateInfoKHR({}, storage->buffer(), 0,
-                                                             sizes.accelerationStructureSize, type));
+            c.device, vk::AccelerationStructureCreateInfoKHR(
+                          {}, storage->buffer(), 0, sizes.accelerationStructureSize, type));
         auto& room = scratch.emplace_back(std::make_unique<HostBuffer>(
             c, std::max<vk::DeviceSize>(sizes.buildScratchSize, 1) + scratchAlignment,
             Usage::eStorageBuffer | addressed, BufferMemory::DeviceLocal));
@@ -92,8 +94,8 @@ SceneStructure::SceneStructure(Context::Impl& c, std::span<const Aabb> boxes, do
     vk::AccelerationStructureInstanceKHR instance;
     for (int row = 0; row < 3; ++row) instance.transform.matrix[row][row] = 1;  // the identity
     instance.mask = 0xFF;
-    instance.flags = VkGeometryInstanceFlagsKHR(
-        vk::GeometryInstanceFlagBitsKHR::eTriangleFacingCullDisable);
+    instance.flags =
+        VkGeometryInstanceFlagsKHR(vk::GeometryInstanceFlagBitsKHR::eTriangleFacingCullDisable);
     instance.accelerationStructureReference =
         c.device.getAccelerationStructureAddressKHR({*bottom_});
     instances_ = std::make_unique<HostBuffer>(
@@ -129,7 +131,8 @@ SceneStructure::SceneStructure(Context::Impl& c, std::span<const Aabb> boxes, do
           vk::AccessFlagBits::eAccelerationStructureReadKHR);
     commands.end();
     const vk::raii::Fence fence(c.device, vk::FenceCreateInfo{});
-    submitAndWait(c, vk::SubmitInfo({}, {}, *commands), fence, "the acceleration structure's build");
+    submitAndWait(c, vk::SubmitInfo({}, {}, *commands), fence,
+                  "the acceleration structure's build");
     buildSeconds_ = building.seconds();
 }
 

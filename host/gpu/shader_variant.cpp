@@ -204,11 +204,11 @@ std::vector<std::string> variantFlags() {
     std::vector<std::string> flags;
     for (const GpuKind& kind : kGpuKinds) flags.push_back(kind.define);
     for (const GpuShading& shading : kGpuShading) flags.push_back(shading.define);
-    for (const char* other : {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_BLOCKS", "VKRAY_AOVS",
-                              "VKRAY_DEBUG_PIXEL", "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET",
-                              "VKRAY_PRECISION_NAIVE", "VKRAY_PRECISION_FP64", "VKRAY_KEEP_TORI",
-                              "VKRAY_FEELER_HINTS", "VKRAY_WORLD_TRIANGLES", "VKRAY_RAY_QUERY",
-                              "VKRAY_OBJECTS"})
+    for (const char* other :
+         {"VKRAY_LIGHTS", "VKRAY_OBJECT_BVH", "VKRAY_BLOCKS", "VKRAY_AOVS", "VKRAY_DEBUG_PIXEL",
+          "VKRAY_STRESS_OUTPUT", "VKRAY_FAULT_NO_OFFSET", "VKRAY_PRECISION_NAIVE",
+          "VKRAY_PRECISION_FP64", "VKRAY_KEEP_TORI", "VKRAY_FEELER_HINTS", "VKRAY_WORLD_TRIANGLES",
+          "VKRAY_RAY_QUERY", "VKRAY_OBJECTS"})
         flags.push_back(other);
     return flags;
 }
@@ -280,7 +280,8 @@ std::vector<ShaderBinding> bindingsFor(const ShaderFeatures& features) {
     if (features.stressOutput)
         bindings.push_back({BINDING_STRESS_OUTPUT, "stress output", Storage});
     if (features.rayQuery)
-        bindings.push_back({BINDING_SCENE_STRUCTURE, "acceleration structure", AccelerationStructure});
+        bindings.push_back(
+            {BINDING_SCENE_STRUCTURE, "acceleration structure", AccelerationStructure});
     return bindings;
 }
 

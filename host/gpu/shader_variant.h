@@ -168,10 +168,10 @@ std::string describe(const ShaderFeatures& features);
 
 // How the shader reads a binding (shaders/layout.h, "Descriptor bindings").
 enum class BindingKind {
-    Storage,     // a storage buffer (what the shader writes; the frame's, the tile's
-                 // and fp64's camera parameters; the pending rays)
-    Texels,      // a read-only storage texel buffer, rgba32ui (uimageBuffer)
-    UintTexels,  // the same, r32ui
+    Storage,                // a storage buffer (what the shader writes; the frame's, the tile's
+                            // and fp64's camera parameters; the pending rays)
+    Texels,                 // a read-only storage texel buffer, rgba32ui (uimageBuffer)
+    UintTexels,             // the same, r32ui
     AccelerationStructure,  // the driver's (VKRAY_RAY_QUERY), not a buffer of vkray's
 };
 

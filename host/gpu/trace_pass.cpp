@@ -344,8 +344,9 @@ TracePass::TracePass(Context::Impl& c, const Pipeline& pipeline, const ShaderFea
         const vk::AccelerationStructureKHR structure = structure_ ? structure_->handle() : nullptr;
         const vk::WriteDescriptorSetAccelerationStructureKHR structureInfo(structure);
         if (structure_)
-            writes.emplace_back(set, BINDING_SCENE_STRUCTURE, 0, 1,
-                                vk::DescriptorType::eAccelerationStructureKHR)
+            writes
+                .emplace_back(set, BINDING_SCENE_STRUCTURE, 0, 1,
+                              vk::DescriptorType::eAccelerationStructureKHR)
                 .setPNext(&structureInfo);
         c.device.updateDescriptorSets(writes, nullptr);
     }

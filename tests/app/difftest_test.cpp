@@ -52,8 +52,8 @@ TEST_F(Difftest, TheRayQueryWalkAgreesOnTheFixedSeeds) {
     const RunResult devices = vkray("devices");
     if (devices.output.find("ray queries yes") == std::string::npos)
         GTEST_SKIP() << "the device has no ray queries (lavapipe has them from Mesa 24.1)";
-    RunResult run = vkray("difftest --scenes 8 --seed 100 --traversal rayquery --out " +
-                          path("found"));
+    RunResult run =
+        vkray("difftest --scenes 8 --seed 100 --traversal rayquery --out " + path("found"));
     EXPECT_EQ(run.status, 0) << run.output;
     EXPECT_NE(run.output.find("difftest: 7 passed, 0 failed"), std::string::npos) << run.output;
 }

@@ -187,9 +187,9 @@ TEST_F(Reliability, NoDeviceWithComputeSaysWhatToInstall) {
 // rayquery refused, naming the device and what to do, nothing written;
 // auto takes the own walk and says why.
 TEST_F(Reliability, RayQueriesOnADeviceWithoutThemAreRefused) {
-    RunResult run = vkray("render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png") +
-                              " --traversal rayquery",
-                          "VKRAY_FAULT=no-ray-query");
+    RunResult run = vkray(
+        "render " + scene("s.sdl", kGoodScene) + " -o " + path("out.png") + " --traversal rayquery",
+        "VKRAY_FAULT=no-ray-query");
     EXPECT_EQ(run.status, 1) << run.output;
     EXPECT_NE(run.output.find("--traversal rayquery: the device 0 ("), std::string::npos)
         << run.output;

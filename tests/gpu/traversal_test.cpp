@@ -62,9 +62,10 @@ TEST(Traversal, RayQueriesAreRefusedWhereTheyCannotRunAndAutoSaysWhy) {
     EXPECT_NE(errorOf(gpu::Traversal::RayQuery, without, spheres, features)
                   .find("--traversal rayquery: the device 0 (a device) has no ray queries"),
               std::string::npos);
-    EXPECT_NE(errorOf(gpu::Traversal::RayQuery, with, planes, gpu::featuresOf(planes, settings, false))
-                  .find("the scene has no bounded object"),
-              std::string::npos);
+    EXPECT_NE(
+        errorOf(gpu::Traversal::RayQuery, with, planes, gpu::featuresOf(planes, settings, false))
+            .find("the scene has no bounded object"),
+        std::string::npos);
     gpu::ShaderFeatures stress = features;
     stress.stressOutput = true;
     EXPECT_NE(errorOf(gpu::Traversal::RayQuery, with, spheres, stress).find("stress and debug"),
@@ -86,9 +87,9 @@ TEST(Traversal, RayQueriesAreRefusedWhereTheyCannotRunAndAutoSaysWhy) {
     EXPECT_FALSE(gpu::meshNodesWithObjects(chosen));
 }
 
-#define VKRAY_NEED_RAY_QUERIES()                                                          \
-    if (!test::gpuContext().device().rayQuery)                                            \
-    GTEST_SKIP() << "the device (" << test::gpuContext().device().name                     \
+#define VKRAY_NEED_RAY_QUERIES()                                                              \
+    if (!test::gpuContext().device().rayQuery)                                                \
+    GTEST_SKIP() << "the device (" << test::gpuContext().device().name                        \
                  << ") has no ray queries: the ray-query walk runs in the suite's Mesa 25.0 " \
                     "stage (lavapipe has them from Mesa 24.1)"
 
@@ -177,8 +178,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, RayQueryWalk, ::testing::ValuesIn(cases()), cas
 TEST(RayQueryWalk, IsRefusedOnADeviceWithoutThem) {
     if (test::gpuContext().device().rayQuery) GTEST_SKIP() << "this device has ray queries";
     const Scene scene = sceneOf("sphere\n");
-    gpu::GpuTracer tracer(test::gpuContext(),
-                          {.shaderDirectory = test::kShaderDir, .traversal = gpu::Traversal::RayQuery});
+    gpu::GpuTracer tracer(test::gpuContext(), {.shaderDirectory = test::kShaderDir,
+                                               .traversal = gpu::Traversal::RayQuery});
     try {
         tracer.render(scene, makeCameraBasis(autoCamera(scene), 8, 8), {8, 8, 1, 1});
         FAIL() << "rendered without ray queries";
