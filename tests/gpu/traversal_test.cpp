@@ -2,6 +2,7 @@
 // driver's ray queries, and the ray-query walk's renders, which must be the
 // own walk's bytes. The renders need a device with ray queries (lavapipe from
 // Mesa 24.1: the suite's Mesa 25.0 stage); elsewhere they skip, saying so.
+#include "support/frame_difference.h"
 #include "support/gpu_fixture.h"
 
 #include "gpu/traversal.h"
@@ -93,15 +94,6 @@ TEST(Traversal, RayQueriesAreRefusedWhereTheyCannotRunAndAutoSaysWhy) {
                  << ") has no ray queries: the ray-query walk runs in the suite's Mesa 25.0 " \
                     "stage (lavapipe has them from Mesa 24.1)"
 
-template <typename T>
-size_t differingValues(const std::vector<T>& a, const std::vector<T>& b) {
-    if (a.size() != b.size()) return std::max(a.size(), b.size());
-    size_t differing = 0;
-    for (size_t i = 0; i < a.size(); ++i)
-        differing += std::memcmp(&a[i], &b[i], sizeof(T)) != 0 ? 1 : 0;
-    return differing;
-}
-
 struct Case {
     std::string path;
     Precision precision;
@@ -140,9 +132,9 @@ TEST_P(RayQueryWalk, RendersTheOwnWalksBytes) {
     EXPECT_EQ(own.variant.find("+ray-query"), std::string::npos) << own.variant;
     EXPECT_NE(rayQuery.variant.find("+ray-query"), std::string::npos) << rayQuery.variant;
     EXPECT_EQ(a.id, b.id);
-    EXPECT_EQ(differingValues(a.color, b.color), 0u) << "colour bits differ";
-    EXPECT_EQ(differingValues(a.depth, b.depth), 0u);
-    EXPECT_EQ(differingValues(a.normal, b.normal), 0u);
+    EXPECT_EQ(test::differingValues(a.color, b.color), 0u) << "colour bits differ";
+    EXPECT_EQ(test::differingValues(a.depth, b.depth), 0u);
+    EXPECT_EQ(test::differingValues(a.normal, b.normal), 0u);
     EXPECT_GT(std::count_if(a.id.begin(), a.id.end(), [](int id) { return id >= 0; }), 50);
 }
 

@@ -44,16 +44,6 @@ const char* const kDataScenes[] = {"gallery.dat", "kitchen.dat", "shadow_hints.s
 // the corpus is there (hlArch.dat is an outline that castle.dat extrudes).
 const char* const kCorpusScenes[] = {"bookScene.dat", "castle.dat", "hlScene1.dat"};
 
-// Bit patterns, so that -0 against +0 or two NaNs count as what they are.
-template <typename T>
-size_t differingValues(const std::vector<T>& a, const std::vector<T>& b) {
-    if (a.size() != b.size()) return std::max(a.size(), b.size());
-    size_t differing = 0;
-    for (size_t i = 0; i < a.size(); ++i)
-        differing += std::memcmp(&a[i], &b[i], sizeof(T)) != 0 ? 1 : 0;
-    return differing;
-}
-
 struct Case {
     std::string path;  // for a corpus scene, its name in the corpus
     int spp;
@@ -96,9 +86,9 @@ TEST_P(SpecialisedVsAllFeatures, RenderTheSameBytes) {
     const Frame b = test::renderOnGpu(scene, basis, settings, &statsAll, true);
     ASSERT_EQ(statsScene.variant, gpu::describe(specialised));
     ASSERT_EQ(statsAll.variant, gpu::describe(all));
-    EXPECT_EQ(differingValues(a.color, b.color), 0u) << "colour bits differ";
-    EXPECT_EQ(differingValues(a.depth, b.depth), 0u);
-    EXPECT_EQ(differingValues(a.normal, b.normal), 0u);
+    EXPECT_EQ(test::differingValues(a.color, b.color), 0u) << "colour bits differ";
+    EXPECT_EQ(test::differingValues(a.depth, b.depth), 0u);
+    EXPECT_EQ(test::differingValues(a.normal, b.normal), 0u);
     EXPECT_EQ(a.id, b.id);
     // Not an empty picture: the comparison covers hits.
     EXPECT_GT(std::count_if(a.id.begin(), a.id.end(), [](int id) { return id >= 0; }), 50);
@@ -155,7 +145,7 @@ TEST(FeelerHints, ThePictureDoesNotDependOnThem) {
                                                   .userDefines = {{"VKRAY_ARBITRARY_HINTS", "1"}}});
     const Frame a = hinted.render(scene, basis, settings);
     const Frame b = arbitrary.render(scene, basis, settings);
-    EXPECT_EQ(differingValues(a.color, b.color), 0u) << "colour bits differ";
+    EXPECT_EQ(test::differingValues(a.color, b.color), 0u) << "colour bits differ";
     EXPECT_EQ(a.id, b.id);
 }
 
